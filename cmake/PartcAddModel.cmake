@@ -1,0 +1,47 @@
+# CMake functions that compile a .part model with partc as part of a build.
+#
+#   partc_add_model(<target> <file.part>)
+#       an executable: the generated model plus its command-line driver.
+#   partc_add_model_library(<target> <file.part>)
+#       an INTERFACE library whose include path holds <file>.hpp, the
+#       generated model class, for C++ code that drives the model itself.
+#
+# Both regenerate the C++ whenever the .part file or partc changes.
+# PARTC_EXECUTABLE must name partc (a path or a generator expression).
+
+function(_partc_generate part_file out_file extra_flags)
+  get_filename_component(part_abs ${part_file} ABSOLUTE)
+  get_filename_component(out_dir ${out_file} DIRECTORY)
+  file(MAKE_DIRECTORY ${out_dir})
+  add_custom_command(
+    OUTPUT ${out_file}
+    COMMAND ${PARTC_EXECUTABLE} ${part_abs} -o ${out_file} ${extra_flags}
+    DEPENDS ${part_abs} ${PARTC_EXECUTABLE_DEPENDS}
+    COMMENT "partc ${part_file}"
+    VERBATIM)
+endfunction()
+
+if(NOT DEFINED PARTC_EXECUTABLE_DEPENDS AND TARGET partc)
+  set(PARTC_EXECUTABLE_DEPENDS partc)
+endif()
+
+function(partc_add_model target part_file)
+  get_filename_component(stem ${part_file} NAME_WE)
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen/${stem}.cpp)
+  _partc_generate(${part_file} ${out} "--main")
+  add_executable(${target} ${out})
+  target_link_libraries(${target} PRIVATE partc_runtime)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Werror)
+endfunction()
+
+function(partc_add_model_library target part_file)
+  get_filename_component(stem ${part_file} NAME_WE)
+  set(dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen)
+  set(out ${dir}/${stem}.hpp)
+  _partc_generate(${part_file} ${out} "")
+  add_custom_target(${target}_generate DEPENDS ${out})
+  add_library(${target} INTERFACE)
+  add_dependencies(${target} ${target}_generate)
+  target_include_directories(${target} INTERFACE ${dir})
+  target_link_libraries(${target} INTERFACE partc_runtime)
+endfunction()

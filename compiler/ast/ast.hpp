@@ -1,0 +1,158 @@
+// The abstract syntax tree of a .part file, exactly as written.
+//
+// Plain structs that the Spirit X3 grammar (grammar/) fills in; no meaning is
+// attached here: names are unresolved and types unknown until sema. Every
+// node derives from Located, so later stages can point at the source.
+// Binary operators of one precedence level are kept as a flat Chain
+// (first op rhs op rhs ...); sema folds them left to right.
+#pragma once
+
+#include <boost/optional.hpp>
+#include <boost/spirit/home/x3/support/ast/variant.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "support/source.hpp"
+
+namespace partc::ast {
+
+namespace x3 = boost::spirit::x3;
+
+struct Located {
+  Location loc;
+};
+
+struct Identifier : Located {
+  std::string name;
+};
+struct IntLiteral : Located {
+  std::int64_t value = 0;
+};
+struct RealLiteral : Located {
+  double value = 0;
+};
+struct BoolLiteral : Located {
+  bool value = false;
+};
+// name[label], e.g. v[i]
+struct Indexed : Located {
+  Identifier var;
+  Identifier label;
+};
+
+struct Chain;
+struct Unary;
+struct Call;
+struct Norm;
+struct Postfix;
+
+struct Operand
+    : x3::variant<IntLiteral, RealLiteral, BoolLiteral, Identifier, Indexed,
+                  x3::forward_ast<Call>, x3::forward_ast<Norm>, x3::forward_ast<Unary>,
+                  x3::forward_ast<Postfix>, x3::forward_ast<Chain>> {
+  using base_type::base_type;
+  using base_type::operator=;
+};
+
+struct BinaryOp : Located {
+  std::string op;
+  Operand rhs;
+};
+// first op rhs op rhs ... at one precedence level
+struct Chain : Located {
+  Operand first;
+  std::vector<BinaryOp> rest;
+};
+// -x, +x, not x
+struct Unary : Located {
+  std::string op;
+  Operand operand;
+};
+// |x|
+struct Norm : Located {
+  Chain inner;
+};
+// x.y, v[i].x
+struct Postfix : Located {
+  Operand base;
+  std::vector<Identifier> components;
+};
+// `j in Q` as the first argument of an accumulation
+struct LabelBinding : Located {
+  Identifier label;
+  Identifier set;
+};
+struct Argument : x3::variant<LabelBinding, Chain> {
+  using base_type::base_type;
+  using base_type::operator=;
+};
+struct Call : Located {
+  Identifier callee;
+  std::vector<Argument> args;
+};
+
+// target op value, op one of = += -= *= /=
+struct Assignment : Located {
+  Indexed target;
+  std::string op;
+  Chain value;
+};
+
+struct ModelDecl : Located {
+  Identifier name;
+};
+struct DimDecl : Located {
+  IntLiteral value;
+};
+struct DomainDecl : Located {
+  std::vector<Chain> lo;
+  std::vector<Chain> hi;
+  boost::optional<std::vector<Identifier>> periodic;
+};
+struct ParamDecl : Located {
+  Identifier name;
+  Identifier type;
+  Chain value;
+};
+struct ConstDecl : Located {
+  Identifier name;
+  Chain value;
+};
+struct VarDecl : Located {
+  Identifier name;
+  Identifier type;
+  boost::optional<Chain> value;
+};
+struct ParticlesDecl : Located {
+  Identifier name;
+  Chain count;
+  std::vector<VarDecl> vars;
+};
+// init [SET] { ... } or step [SET] { ... }
+struct StageBlock : Located {
+  std::string kind;
+  boost::optional<Identifier> set;
+  std::vector<Assignment> body;
+};
+
+struct Declaration : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl,
+                                 ParticlesDecl, StageBlock> {
+  using base_type::base_type;
+  using base_type::operator=;
+};
+
+struct Program {
+  std::vector<Declaration> declarations;
+};
+
+// The single operand a chain is made of, looking through the nesting of
+// precedence levels and parentheses ("j", "(j)"); null when the chain
+// applies any operator.
+const Operand* sole_operand(const Chain& chain);
+
+// The source range of any operand or argument.
+Location location_of(const Operand& operand);
+Location location_of(const Argument& argument);
+
+}  // namespace partc::ast

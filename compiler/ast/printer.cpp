@@ -1,0 +1,98 @@
+#include "ast/printer.hpp"
+
+#include <fmt/format.h>
+
+namespace partc::ast {
+
+namespace {
+
+struct Printer {
+  const SourceFile& file;
+
+  std::string at(const Located& node) const {
+    const LineColumn lc = file.line_column(node.loc.begin);
+    return fmt::format("@{}:{}", lc.line, lc.column);
+  }
+
+  std::string operator()(const IntLiteral& n) const { return std::to_string(n.value); }
+  std::string operator()(const RealLiteral& n) const { return fmt::format("{}", n.value); }
+  std::string operator()(const BoolLiteral& n) const { return n.value ? "true" : "false"; }
+  std::string operator()(const Identifier& n) const { return n.name; }
+  std::string operator()(const Indexed& n) const { return n.var.name + "[" + n.label.name + "]"; }
+  std::string operator()(const Norm& n) const { return "(norm " + (*this)(n.inner) + ")"; }
+  std::string operator()(const Unary& n) const {
+    return "(" + n.op + " " + boost::apply_visitor(*this, n.operand) + ")";
+  }
+  std::string operator()(const Postfix& n) const {
+    std::string out = boost::apply_visitor(*this, n.base);
+    for (const Identifier& c : n.components) out = "(." + c.name + " " + out + ")";
+    return out;
+  }
+  std::string operator()(const Chain& n) const {
+    std::string out = boost::apply_visitor(*this, n.first);
+    for (const BinaryOp& op : n.rest)
+      out = "(" + op.op + " " + out + " " + boost::apply_visitor(*this, op.rhs) + ")";
+    return out;
+  }
+  std::string operator()(const LabelBinding& n) const {
+    return "(in " + n.label.name + " " + n.set.name + ")";
+  }
+  std::string operator()(const Call& n) const {
+    std::string out = "(call " + n.callee.name;
+    for (const Argument& a : n.args) out += " " + boost::apply_visitor(*this, a);
+    return out + ")";
+  }
+  template <class Node>
+  std::string operator()(const x3::forward_ast<Node>& n) const {
+    return (*this)(n.get());
+  }
+
+  std::string operator()(const ModelDecl& n) const { return "(model " + n.name.name + ") " + at(n); }
+  std::string operator()(const DimDecl& n) const {
+    return "(dim " + std::to_string(n.value.value) + ") " + at(n);
+  }
+  std::string tuple(const std::vector<Chain>& items) const {
+    std::string out;
+    for (const Chain& c : items) out += " " + (*this)(c);
+    return out;
+  }
+  std::string operator()(const DomainDecl& n) const {
+    std::string out = "(domain (lo" + tuple(n.lo) + ") (hi" + tuple(n.hi) + ")";
+    if (n.periodic) {
+      out += " (periodic";
+      for (const Identifier& axis : *n.periodic) out += " " + axis.name;
+      out += ")";
+    }
+    return out + ") " + at(n);
+  }
+  std::string operator()(const ParamDecl& n) const {
+    return "(param " + n.name.name + " " + n.type.name + " " + (*this)(n.value) + ") " + at(n);
+  }
+  std::string operator()(const ConstDecl& n) const {
+    return "(const " + n.name.name + " " + (*this)(n.value) + ") " + at(n);
+  }
+  std::string operator()(const ParticlesDecl& n) const {
+    std::string out = "(particles " + n.name.name + " " + (*this)(n.count) + ") " + at(n);
+    for (const VarDecl& v : n.vars)
+      out += "\n  (var " + v.name.name + " " + v.type.name + (v.value ? " " + (*this)(*v.value) : "") +
+             ") " + at(v);
+    return out;
+  }
+  std::string operator()(const StageBlock& n) const {
+    std::string out = "(" + n.kind + (n.set ? " " + n.set->name : "") + ") " + at(n);
+    for (const Assignment& a : n.body)
+      out += "\n  (" + a.op + " " + (*this)(a.target) + " " + (*this)(a.value) + ") " + at(a);
+    return out;
+  }
+};
+
+}  // namespace
+
+std::string to_string(const Program& program, const SourceFile& file) {
+  std::string out;
+  for (const Declaration& d : program.declarations)
+    out += boost::apply_visitor(Printer{file}, d) + "\n";
+  return out;
+}
+
+}  // namespace partc::ast

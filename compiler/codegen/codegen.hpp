@@ -1,0 +1,33 @@
+// C++ code generation: one self-contained translation unit per model.
+#pragma once
+
+#include <string>
+
+#include "analysis/aliasing.hpp"
+#include "analysis/neighbourhood.hpp"
+#include "ir/ir.hpp"
+#include "support/source.hpp"
+
+namespace partc {
+
+struct CodegenOptions {
+  bool driver_main = false;   // also emit int main() running partc::run_driver
+  std::string source_name;    // how the .part file is named in comments
+};
+
+// The facts lowering acts on, computed by the analyses.
+struct ModelFacts {
+  AliasReport aliasing;
+  NeighbourhoodReport neighbourhoods;
+};
+
+// Unformatted C++ for the model: a class named after it (md -> Md) with
+// its parameters, particle storage, init(), step() and accessors.
+std::string generate_cpp(const ir::Model& model, const ModelFacts& facts, const SourceFile& file,
+                         const CodegenOptions& options);
+
+// The same text laid out by clang-format (LLVM style, 100 columns).
+// Throws InternalError if clang cannot lex it.
+std::string format_cpp(const std::string& code, const std::string& file_name);
+
+}  // namespace partc

@@ -1,0 +1,205 @@
+// Expression printing with C++ precedence: parentheses only where needed,
+// so generated code reads like the .part line it came from.
+#include "codegen/expression.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "codegen/names.hpp"
+#include "support/diagnostics.hpp"
+
+namespace partc::codegen {
+
+namespace {
+
+using namespace ir;
+
+// C++ precedence levels, higher binds tighter.
+enum Precedence {
+  kOr = 4,
+  kAnd = 5,
+  kEquality = 9,
+  kRelational = 10,
+  kAdditive = 12,
+  kMultiplicative = 13,
+  kUnary = 15,
+  kPrimary = 16
+};
+
+struct Printed {
+  std::string text;
+  int precedence;
+};
+
+int precedence_of(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Add:
+    case BinaryOp::Sub: return kAdditive;
+    case BinaryOp::Mul:
+    case BinaryOp::Div: return kMultiplicative;
+    case BinaryOp::Lt:
+    case BinaryOp::Le:
+    case BinaryOp::Gt:
+    case BinaryOp::Ge: return kRelational;
+    case BinaryOp::Eq:
+    case BinaryOp::Ne: return kEquality;
+    case BinaryOp::And: return kAnd;
+    case BinaryOp::Or: return kOr;
+  }
+  return kPrimary;
+}
+
+const char* cpp_operator(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::And: return "&&";
+    case BinaryOp::Or: return "||";
+    default: return binary_op_spelling(op);
+  }
+}
+
+class Printer {
+ public:
+  Printer(const Model& model, const ExpressionNames& names) : model_(model), names_(names) {}
+
+  std::string at_least(const Expr& e, int precedence) {
+    Printed p = print(e);
+    return p.precedence < precedence ? "(" + p.text + ")" : p.text;
+  }
+
+  Printed print(const Expr& e) {
+    switch (e->kind) {
+      case ExprKind::Literal: return {emit_literal(e->type, as<Literal>(e)->value), kPrimary};
+      case ExprKind::ParamRef:
+        return {"params_." + cpp_name(model_.params[as<ParamRef>(e)->param].name), kPrimary};
+      case ExprKind::ConstRef:
+        return {names_.consts[as<ConstRef>(e)->constant], kPrimary};
+      case ExprKind::VarRef: {
+        auto v = as<VarRef>(e);
+        return {names_.array(v->set, v->var) + "[" + names_.labels[v->label] + "]", kPrimary};
+      }
+      case ExprKind::Dx: return {"dx", kPrimary};
+      case ExprKind::Unary: return unary(*as<Unary>(e));
+      case ExprKind::Binary: return binary(*as<Binary>(e));
+      case ExprKind::Call: return call(*as<Call>(e));
+      case ExprKind::MakeVec: return {make_vec(as<MakeVec>(e)->components), kPrimary};
+      case ExprKind::Component: {
+        auto c = as<Component>(e);
+        return {at_least(c->vec, kPrimary) + "[" + std::to_string(c->index) + "]", kPrimary};
+      }
+      case ExprKind::Random: return {random(*as<Random>(e)), kPrimary};
+      case ExprKind::Accumulate: return {names_.accumulators.at(as<Accumulate>(e)->id), kPrimary};
+    }
+    internal_error("emit_expression: unknown expression kind");
+  }
+
+ private:
+  Printed unary(const Unary& n) {
+    std::string operand = at_least(n.operand, kUnary);
+    if (n.op == UnaryOp::Not) return {"!" + operand, kUnary};
+    if (operand[0] == '-') operand = "(" + operand + ")";  // never "--x"
+    return {"-" + operand, kUnary};
+  }
+
+  Printed binary(const Binary& n) {
+    const int p = precedence_of(n.op);
+    std::string lhs = at_least(n.lhs, p);
+    // int / int is real division in .part.
+    if (n.op == BinaryOp::Div && n.lhs->type == Type::Int && n.rhs->type == Type::Int)
+      lhs = "static_cast<double>(" + print(n.lhs).text + ")";
+    return {lhs + " " + cpp_operator(n.op) + " " + at_least(n.rhs, p + 1), p};
+  }
+
+  Printed call(const Call& n) {
+    std::vector<std::string> args;
+    for (const Expr& a : n.args) args.push_back(print(a).text);
+    if (n.fn == Function::Norm && as<Dx>(n.args[0]) && !names_.dx_norm.empty())
+      return {names_.dx_norm, kPrimary};
+    switch (n.fn) {
+      case Function::Dot: return {fmt::format("partc::dot({}, {})", args[0], args[1]), kPrimary};
+      case Function::Norm: return {fmt::format("partc::norm({})", args[0]), kPrimary};
+      case Function::Min:
+      case Function::Max:
+        return {fmt::format("std::{}<{}>({}, {})", function_name(n.fn), cpp_type(n.type), args[0],
+                            args[1]),
+                kPrimary};
+      default:
+        return {fmt::format("std::{}({})", function_name(n.fn), fmt::join(args, ", ")), kPrimary};
+    }
+  }
+
+  std::string make_vec(const std::vector<Expr>& components) {
+    std::vector<std::string> parts;
+    for (const Expr& c : components) {
+      if (auto lit = as<Literal>(c)) {
+        parts.push_back(emit_literal(Type::Real, lit->value));
+      } else if (c->type == Type::Int) {
+        parts.push_back("static_cast<double>(" + print(c).text + ")");  // no narrowing in {}
+      } else {
+        parts.push_back(print(c).text);
+      }
+    }
+    return fmt::format("Vec{{{{{}}}}}", fmt::join(parts, ", "));
+  }
+
+  std::string random(const Random& n) {
+    const char* draw = n.distribution == Distribution::Uniform ? "uniform" : "normal";
+    const std::string id = names_.array(names_.home_set, kId) + "[" + names_.labels[0] + "]";
+    auto one = [&](int k) {
+      return fmt::format("rng_.{}({}, step_, {}, {})", draw, id, n.stream, k);
+    };
+    if (n.type != Type::Vec) return one(0);
+    std::vector<std::string> parts;
+    for (int k = 0; k < model_.dim; ++k) parts.push_back(one(k));
+    return fmt::format("Vec{{{{{}}}}}", fmt::join(parts, ", "));
+  }
+
+  const Model& model_;
+  const ExpressionNames& names_;
+};
+
+}  // namespace
+
+std::string emit_literal(Type type, double value) {
+  switch (type) {
+    case Type::Bool: return value != 0 ? "true" : "false";
+    case Type::Int: {
+      const auto v = static_cast<long long>(value);
+      return std::llabs(v) < (1LL << 31) ? std::to_string(v) : std::to_string(v) + "LL";
+    }
+    case Type::Real:
+    case Type::Vec: {
+      if (std::isinf(value)) return value > 0 ? "std::numeric_limits<double>::infinity()"
+                                              : "-std::numeric_limits<double>::infinity()";
+      std::string text = fmt::format("{}", value);  // shortest text that round-trips
+      if (text.find_first_of(".en") == std::string::npos) text += ".0";
+      return text;
+    }
+  }
+  return "?";
+}
+
+std::string cpp_type(Type type) {
+  switch (type) {
+    case Type::Bool: return "bool";
+    case Type::Int: return "std::int64_t";
+    case Type::Real: return "double";
+    case Type::Vec: return "Vec";
+  }
+  return "?";
+}
+
+std::string emit_expression(const Expr& e, const Model& model, const ExpressionNames& names) {
+  return Printer(model, names).print(e).text;
+}
+
+}  // namespace partc::codegen
+
+namespace partc::codegen {
+
+std::string emit_operand(const ir::Expr& e, ir::BinaryOp operand_of, const ir::Model& model,
+                         const ExpressionNames& names) {
+  return Printer(model, names).at_least(e, precedence_of(operand_of) + 1);
+}
+
+}  // namespace partc::codegen

@@ -1,0 +1,726 @@
+// Emits the C++ class for a model.
+//
+// Layout of the generated class, in order: the parameter struct, one tag
+// per particle variable (the runtime's SoA ParticleSet is keyed by them),
+// the public API (init, load, step, accessors, what the driver needs), one
+// private kernel per statement, then the state. Each kernel is one pass
+// over its particle set, preceded by the .part line it implements and the
+// facts that shaped it (buffered or in place, how neighbours are found).
+// Only what the model uses is emitted: no search structure for a set no
+// accumulation searches, no buffer for a statement that updates in place.
+#include <fmt/format.h>
+
+#include <set>
+
+#include "codegen/codegen.hpp"
+#include "codegen/expression.hpp"
+#include "codegen/names.hpp"
+#include "ir/visitor.hpp"
+#include "sema/constant.hpp"
+#include "support/diagnostics.hpp"
+
+namespace partc {
+
+namespace {
+
+using namespace ir;
+using codegen::cpp_name;
+using codegen::cpp_type;
+using codegen::emit_expression;
+using codegen::emit_literal;
+using codegen::ExpressionNames;
+using codegen::NameTable;
+
+// What one statement's kernel touches.
+class StatementUses : public Visitor {
+ public:
+  std::set<std::pair<int, int>> arrays;  // (set, var) read
+  std::vector<const Accumulate*> accumulations;
+  bool random = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const VarRef& n) override { arrays.insert({n.set, n.var}); }
+  void visit(const Random&) override { random = true; }
+  void visit(const Accumulate& n) override {
+    accumulations.push_back(&n);
+    Visitor::visit(n);
+  }
+};
+
+// Whether an expression reads any variable through one label (j).
+class ReadsLabel : public Visitor {
+ public:
+  explicit ReadsLabel(int label) : label_(label) {}
+  bool found = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const VarRef& n) override { found |= n.label == label_; }
+
+ private:
+  int label_;
+};
+
+class UsesDx : public Visitor {
+ public:
+  bool dx = false, norm = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const Dx&) override { dx = true; }
+  void visit(const Call& n) override {
+    if (n.fn == Function::Norm && as<Dx>(n.args[0])) norm = true;
+    Visitor::visit(n);
+  }
+};
+
+std::string one_line(std::string_view text) {
+  std::string out;
+  bool space = false;
+  for (char c : text) {
+    if (c == '\n' || c == '\r' || c == '\t' || c == ' ') {
+      space = !out.empty();
+      continue;
+    }
+    if (space) out += ' ';
+    space = false;
+    out += c;
+  }
+  return out;
+}
+
+class ModelEmitter {
+ public:
+  ModelEmitter(const Model& model, const ModelFacts& facts, const SourceFile& file,
+               const CodegenOptions& options)
+      : m_(model), facts_(facts), file_(file), options_(options) {
+    cls_ = codegen::class_name(m_.name);
+    for (const char* fixed : {"params_", "rng_", "step_", "domain_"}) members_.reserve(fixed);
+    for (const ParticleSet& s : m_.sets) {
+      set_member_.push_back(members_.fresh(cpp_name(s.name) + "_"));
+      epoch_.push_back(members_.fresh(s.name + "_epoch_"));
+      set_type_.push_back(members_.fresh(s.name + "Set"));
+    }
+    for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
+    plan_searches();
+  }
+
+  std::string run() {
+    header();
+    line("class " + cls_ + " {");
+    line("public:");
+    public_types();
+    public_api();
+    line("private:");
+    helpers();
+    kernels();
+    state();
+    line("};");
+    if (options_.driver_main) {
+      line("");
+      line("int main(int argc, char** argv) { return partc::run_driver<" + cls_ +
+           ">(argc, argv); }");
+    }
+    return out_;
+  }
+
+ private:
+  // ---- output -----------------------------------------------------------
+
+  void line(const std::string& text) {
+    out_ += text;
+    out_ += '\n';
+  }
+  template <class... Args>
+  void linef(fmt::format_string<Args...> f, Args&&... args) {
+    line(fmt::format(f, std::forward<Args>(args)...));
+  }
+
+  std::string source_line(Location loc) const {
+    return fmt::format("{}:{}", options_.source_name, file_.line_column(loc.begin).line);
+  }
+  std::string source_text(Location loc) const { return one_line(file_.slice(loc)); }
+
+  // ---- searches: one per set that a neighbourhood sum runs over ----------
+
+  void plan_searches() {
+    search_member_.assign(m_.sets.size(), "");
+    for (const auto& [id, fact] : facts_.neighbourhoods) {
+      if (fact.kind != SearchFact::Kind::Neighbours) continue;
+      const int set = accumulation_set(id);
+      if (search_member_[set].empty()) search_member_[set] = members_.fresh(m_.sets[set].name + "_search_");
+    }
+  }
+
+  int accumulation_set(int accumulation_id) const {
+    for (const Stage& stage : m_.stages)
+      for (const Statement& st : stage.statements) {
+        StatementUses uses;
+        uses.visit(st.value);
+        for (const Accumulate* acc : uses.accumulations)
+          if (acc->id == accumulation_id) return st.labels[acc->label].set;
+      }
+    internal_error("accumulation without a statement");
+  }
+
+  // ---- header -----------------------------------------------------------
+
+  void header() {
+    linef("// {}: generated by partc {} from {}.", cls_, PARTC_VERSION, options_.source_name);
+    line("// Do not edit: change the .part file and run partc again.");
+    std::vector<std::string> extent;
+    for (int k = 0; k < m_.dim; ++k)
+      extent.push_back(fmt::format("[{}, {}]", emit_literal(Type::Real, m_.domain.lo[k]),
+                                   emit_literal(Type::Real, m_.domain.hi[k])));
+    std::vector<std::string> periodic;
+    static const char* axes[] = {"x", "y", "z", "w"};
+    for (int k = 0; k < m_.dim; ++k)
+      if (m_.domain.periodic[k]) periodic.push_back(axes[k]);
+    linef("// Model {}: {} dimensions, domain {}, {}.", m_.name, m_.dim, fmt::join(extent, " x "),
+          periodic.empty() ? std::string("not periodic")
+                           : "periodic in " + fmt::format("{}", fmt::join(periodic, ", ")));
+    line("#include <algorithm>");
+    line("#include <cmath>");
+    line("#include <cstdint>");
+    line("#include <limits>");
+    line("#include <map>");
+    line("#include <string>");
+    line("#include <vector>");
+    line("");
+    std::vector<std::string> headers = {"csv.hpp",          "domain.hpp", "errors.hpp",
+                                        "finite.hpp",       "model_support.hpp",
+                                        "particle_set.hpp", "rng.hpp",    "vec.hpp"};
+    if (std::any_of(search_member_.begin(), search_member_.end(),
+                    [](const std::string& s) { return !s.empty(); }))
+      headers.push_back("neighbour_search.hpp");
+    if (options_.driver_main) headers.push_back("driver.hpp");
+    std::sort(headers.begin(), headers.end());
+    for (const std::string& h : headers) linef("#include <partc/{}>", h);
+    line("");
+  }
+
+  // ---- public types -----------------------------------------------------
+
+  std::string tag(int set, int var) const {
+    return cpp_name(m_.sets[set].name + "_" + m_.sets[set].vars[var].name);
+  }
+
+  void public_types() {
+    linef("static constexpr const char* model_name = \"{}\";", m_.name);
+    linef("static constexpr int dim = {};", m_.dim);
+    linef("using Vec = partc::Vec<{}>;", m_.dim);
+    line("");
+    line("// Parameters: set them before init(), or with --set NAME=VALUE.");
+    line("struct Params {");
+    for (const Param& p : m_.params)
+      linef("{} {} = {};  // {}", cpp_type(p.type), cpp_name(p.name),
+            emit_literal(p.type, as<Literal>(p.default_value)->value), source_line(p.loc));
+    line("};");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) {
+      const ParticleSet& set = m_.sets[s];
+      line("");
+      linef("// Particle set {} ({}): p, id, alive and its variables.", set.name,
+            source_line(set.loc));
+      std::vector<std::string> tags;
+      for (std::size_t v = kFirstUserVar; v < set.vars.size(); ++v) {
+        const Variable& var = set.vars[v];
+        tags.push_back(tag(s, v));
+        linef("struct {} {{ using type = {}; static constexpr const char* name = \"{}\"; }};",
+              tags.back(), var.type == Type::Vec ? "Vec" : cpp_type(var.type), var.name);
+      }
+      linef("using {} = partc::ParticleSet<{}{}{}>;", set_type_[s], m_.dim, tags.empty() ? "" : ", ",
+            fmt::join(tags, ", "));
+    }
+    line("");
+  }
+
+  // ---- public API -------------------------------------------------------
+
+  void public_api() {
+    line("Params& params() { return params_; }");
+    line("const Params& params() const { return params_; }");
+    line("void set_seed(std::uint64_t seed) { rng_ = partc::CounterRng(seed); }");
+    line("std::int64_t step_count() const { return step_; }");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) {
+      linef("{0}& {1}() {{ return {2}; }}", set_type_[s], cpp_name(m_.sets[s].name), set_member_[s]);
+      linef("const {0}& {1}() const {{ return {2}; }}", set_type_[s], cpp_name(m_.sets[s].name),
+            set_member_[s]);
+    }
+    line("");
+    param_info();
+    set_param();
+    init();
+    load();
+    step();
+    for_each_set();
+    line("");
+    line("// Throws partc::NumericalError naming the first NaN or Inf found.");
+    line("void check_finite() const {");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s)
+      linef("partc::check_finite({}, \"{}\", step_);", set_member_[s], m_.sets[s].name);
+    line("}");
+    line("");
+  }
+
+  void param_info() {
+    line("static std::vector<partc::ParamInfo> param_info() {");
+    line("return {");
+    for (const Param& p : m_.params)
+      linef("{{\"{}\", \"{}\", \"{}\"}},", p.name, type_name(p.type),
+            emit_literal(p.type, as<Literal>(p.default_value)->value));
+    line("};");
+    line("}");
+    line("");
+  }
+
+  void set_param() {
+    line("// Sets a parameter from text, as the driver's --set does.");
+    line("void set_param(const std::string& name, const std::string& value) {");
+    std::vector<std::string> names;
+    for (const Param& p : m_.params) {
+      names.push_back(p.name);
+      linef("if (name == \"{0}\") {{ params_.{1} = partc::parse_param<{2}>(\"{0}\", value); return; }}",
+            p.name, cpp_name(p.name), cpp_type(p.type));
+    }
+    const std::string listed = names.empty() ? "this model has none" : fmt::format("parameters: {}", fmt::join(names, ", "));
+    linef("throw partc::UsageError(\"unknown parameter '\" + name + \"' ({})\");", listed);
+    line("}");
+    line("");
+  }
+
+  void init() {
+    line("// Computes the constants, creates every set's particles with their");
+    line("// declared initial values, then runs the init blocks.");
+    line("void init() {");
+    line("compute_constants();");
+    line("step_ = 0;");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) linef("create_{}();", m_.sets[s].name);
+    for (const std::string& k : kernel_names(StageKind::Init)) linef("{}();", k);
+    line("}");
+    line("");
+  }
+
+  void load() {
+    line("// Instead of init(): particles come from tables (CSV files), one per");
+    line("// named set; sets not named start empty. Variables a table lacks take");
+    line("// their declared initial values.");
+    line("void load(const std::map<std::string, partc::CsvTable>& tables) {");
+    line("compute_constants();");
+    line("step_ = 0;");
+    std::vector<std::string> names;
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) {
+      const std::string& name = m_.sets[s].name;
+      names.push_back(name);
+      linef("{}.clear();", set_member_[s]);
+      linef("if (auto t = tables.find(\"{}\"); t != tables.end())", name);
+      linef("partc::load_set({0}, t->second, domain_, [this](std::size_t i) {{ initialise_{1}(i); }});",
+            set_member_[s], name);
+      linef("++{};", epoch_[s]);
+    }
+    line("for (const auto& [name, table] : tables)");
+    linef("if ({}) throw partc::UsageError(\"no particle set '\" + name + \"' in model {} (sets: {})\");",
+          fmt::join(set_comparisons(names), " && "), m_.name, fmt::join(names, ", "));
+    line("}");
+    line("");
+  }
+
+  static std::vector<std::string> set_comparisons(const std::vector<std::string>& names) {
+    std::vector<std::string> out;
+    for (const std::string& n : names) out.push_back("name != \"" + n + "\"");
+    return out;
+  }
+
+  void step() {
+    line("// One time step: every step block, in order.");
+    line("void step() {");
+    for (const std::string& k : kernel_names(StageKind::Step)) linef("{}();", k);
+    line("++step_;");
+    line("}");
+    line("");
+  }
+
+  void for_each_set() {
+    line("// f(name, set) for every particle set, in declaration order.");
+    line("template <class F> void for_each_set(F&& f) const {");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s)
+      linef("f(\"{}\", {});", m_.sets[s].name, set_member_[s]);
+    line("}");
+  }
+
+  // ---- private helpers --------------------------------------------------
+
+  void helpers() {
+    line("// Constants that depend on parameters, computed once they are known.");
+    line("void compute_constants() {");
+    for (std::size_t c = 0; c < m_.consts.size(); ++c)
+      if (!evaluate_constant(m_.consts[c].value, m_))
+        linef("{} = {};  // {}", const_member_[c], expression(m_.consts[c].value, initialiser_names(0)),
+              source_line(m_.consts[c].loc));
+    line("}");
+    line("");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) {
+      create_set(static_cast<int>(s));
+      initialise_particle(static_cast<int>(s));
+    }
+  }
+
+  void create_set(int s) {
+    const ParticleSet& set = m_.sets[s];
+    linef("// Creates the {} particles of {} ({}).", source_text(set.initial_count->loc), set.name,
+          source_line(set.loc));
+    linef("void create_{}() {{", set.name);
+    linef("const std::int64_t count = {};", expression(set.initial_count, initialiser_names(s)));
+    linef("if (count < 0) throw partc::UsageError(\"particle set {} would have \" + std::to_string(count) + \" particles\");",
+          set.name);
+    linef("{}.clear();", set_member_[s]);
+    linef("{}.reserve(static_cast<std::size_t>(count));", set_member_[s]);
+    line("for (std::int64_t k = 0; k < count; ++k)");
+    linef("initialise_{}({}.push_back(Vec::zero()));", set.name, set_member_[s]);
+    linef("++{};", epoch_[s]);
+    line("}");
+    line("");
+  }
+
+  void initialise_particle(int s) {
+    const ParticleSet& set = m_.sets[s];
+    linef("// The declared initial values of particle i of {}.", set.name);
+    bool any = false;
+    for (const Variable& v : set.vars) any |= v.initial != nullptr;
+    linef("void initialise_{}(std::size_t{}) {{", set.name, any ? " i" : "");
+    if (any) {
+      ExpressionNames names = initialiser_names(s);
+      std::set<std::pair<int, int>> arrays;
+      bool random = false;
+      for (const Variable& v : set.vars) {
+        if (!v.initial) continue;
+        StatementUses uses;
+        uses.visit(v.initial);
+        random |= uses.random;
+      }
+      if (random) linef("const auto& id = {}.ids();", set_member_[s]);
+      for (std::size_t v = 0; v < set.vars.size(); ++v) {
+        const Variable& var = set.vars[v];
+        if (!var.initial) continue;
+        linef("{}[i] = {};  // {}", array_access(s, static_cast<int>(v)),
+              expression(var.initial, names), source_line(var.loc));
+      }
+    }
+    line("}");
+    line("");
+  }
+
+  // `P_.get<P_v>()`, `P_.positions()`, ...: a set's array of one variable.
+  std::string array_access(int s, int var) const {
+    switch (var) {
+      case kPosition: return set_member_[s] + ".positions()";
+      case kId: return set_member_[s] + ".ids()";
+      case kAlive: return set_member_[s] + ".alive()";
+      default: return set_member_[s] + ".get<" + tag(s, var) + ">()";
+    }
+  }
+
+  ExpressionNames initialiser_names(int s) const {
+    ExpressionNames names;
+    names.consts = const_member_;
+    names.home_set = s;
+    names.labels = {"i"};
+    names.array = [](int, int var) { return var == kId ? std::string("id") : std::string("?"); };
+    return names;
+  }
+
+  std::string expression(const Expr& e, const ExpressionNames& names) const {
+    return emit_expression(e, m_, names);
+  }
+
+  // ---- kernels ----------------------------------------------------------
+
+  struct Kernel {
+    std::string name;
+    const Statement* st;
+    const AliasFact* alias;
+  };
+
+  void plan_kernels() {
+    if (!kernels_.empty()) return;
+    for (std::size_t g = 0; g < m_.stages.size(); ++g) {
+      const Stage& stage = m_.stages[g];
+      for (std::size_t k = 0; k < stage.statements.size(); ++k) {
+        const Statement& st = stage.statements[k];
+        const std::string stage_name = stage.kind == StageKind::Init ? "init" : "step";
+        const std::string set_part = m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "";
+        kernels_.push_back({members_.fresh(stage_name + "_" + set_part + m_.sets[st.set].vars[st.var].name),
+                            &st, &facts_.aliasing[g][k]});
+        kernel_stage_.push_back(stage.kind);
+      }
+    }
+  }
+
+  std::vector<std::string> kernel_names(StageKind kind) {
+    plan_kernels();
+    std::vector<std::string> out;
+    for (std::size_t k = 0; k < kernels_.size(); ++k)
+      if (kernel_stage_[k] == kind) out.push_back(kernels_[k].name);
+    return out;
+  }
+
+  void kernels() {
+    plan_kernels();
+    for (const Kernel& k : kernels_) kernel(k);
+  }
+
+  void kernel(const Kernel& k) {
+    const Statement& st = *k.st;
+    const int home = st.set;
+    StatementUses uses;
+    uses.visit(st.value);
+
+    // Names local to this kernel: the model's own, then ours.
+    NameTable locals;
+    for (const Label& l : st.labels) locals.reserve(cpp_name(l.name));
+    std::map<std::pair<int, int>, std::string> arrays;
+    auto array_name = [&](int s, int var) -> std::string {
+      auto key = std::make_pair(s, var);
+      auto it = arrays.find(key);
+      if (it != arrays.end()) return it->second;
+      const std::string wanted = cpp_name(s == home ? m_.sets[s].vars[var].name
+                                                    : m_.sets[s].name + "_" + m_.sets[s].vars[var].name);
+      return arrays[key] = locals.fresh(wanted);
+    };
+    std::set<std::pair<int, int>> needed = uses.arrays;
+    needed.insert({home, st.var});
+    if (uses.random) needed.insert({home, kId});
+    for (const Accumulate* acc : uses.accumulations) {
+      UsesDx dx;
+      dx.visit(acc->condition);
+      dx.visit(acc->body);
+      const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
+      if (fact.kind == SearchFact::Kind::Neighbours || dx.dx) needed.insert({home, kPosition});
+      if (fact.kind == SearchFact::Kind::Dense && dx.dx)
+        needed.insert({st.labels[acc->label].set, kPosition});
+    }
+    for (const auto& [s, var] : needed) array_name(s, var);
+
+    ExpressionNames names;
+    names.consts = const_member_;
+    names.home_set = home;
+    for (const Label& l : st.labels) names.labels.push_back(cpp_name(l.name));
+    names.array = array_name;
+    for (const Accumulate* acc : uses.accumulations)
+      names.accumulators[acc->id] =
+          locals.fresh(std::string(reduction_name(acc->reduction)) + "_" + names.labels[acc->label]);
+    const std::string count = locals.fresh("n");
+    const std::string i = names.labels[0];
+
+    // The comment: the .part line and the decisions behind the kernel.
+    linef("// {}", source_line(st.loc));
+    linef("//   {}", source_text(st.loc));
+    for (const Accumulate* acc : uses.accumulations)
+      linef("// {}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
+            facts_.neighbourhoods.at(acc->id).reason);
+    linef("// {}", k.alias->reason);
+    linef("void {}() {{", k.name);
+
+    // Bring every search this statement needs up to date before any index
+    // is taken: a rebuild may reorder its set.
+    std::map<int, std::vector<std::string>> radii;  // set -> radius expressions
+    for (const Accumulate* acc : uses.accumulations) {
+      const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
+      if (fact.kind == SearchFact::Kind::Neighbours)
+        radii[st.labels[acc->label].set].push_back(expression(fact.radius, names));
+    }
+    for (const auto& [s, list] : radii) refresh_search(s, list, locals.fresh("radius"));
+
+    for (const auto& [key, name] : arrays) {
+      const bool written = key.first == home && key.second == st.var;
+      linef("{}auto& {} = {};", written ? "" : "const ", name, array_access(key.first, key.second));
+    }
+    linef("const std::size_t {} = {}.size();", count, set_member_[home]);
+    std::string buffer;
+    if (k.alias->buffered) {
+      buffer = buffer_member(home, st.var);
+      linef("{}.resize({});", buffer, count);
+    }
+    linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", i, count);
+    for (const Accumulate* acc : uses.accumulations) accumulation(*acc, st, names);
+    assignment(st, names, buffer);
+    line("}");
+    const std::string target_array = array_name(home, st.var);
+    if (!buffer.empty()) linef("{}.swap({});", target_array, buffer);
+    if (st.var == kAlive) linef("{}.erase_dead();", set_member_[home]);
+    if (st.var == kPosition || st.var == kAlive) linef("++{};", epoch_[home]);
+    line("}");
+    line("");
+  }
+
+  std::string buffer_member(int s, int var) {
+    auto key = std::make_pair(s, var);
+    auto it = buffers_.find(key);
+    if (it != buffers_.end()) return it->second.first;
+    const ParticleSet& set = m_.sets[s];
+    const std::string name =
+        members_.fresh((m_.sets.size() > 1 ? set.name + "_" : "") + set.vars[var].name + "_next_");
+    const Type type = set.vars[var].type;
+    const std::string element = type == Type::Bool ? "std::uint8_t" : cpp_type(type);
+    buffers_[key] = {name, element};
+    return name;
+  }
+
+  void refresh_search(int s, const std::vector<std::string>& radii, const std::string& local) {
+    std::string radius = radii.front();
+    for (std::size_t k = 1; k < radii.size(); ++k) radius = "std::max(" + radius + ", " + radii[k] + ")";
+    const std::string& search = search_member_[s];
+    linef("const double {} = {};", local, radius);
+    linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
+    linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
+    linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
+    linef("{}radius_ = {};", search, local);
+    line("}");
+  }
+
+  void accumulation(const Accumulate& acc, const Statement& st, const ExpressionNames& names) {
+    const std::string& acc_name = names.accumulators.at(acc.id);
+    const std::string j = names.labels[acc.label];
+    const std::string i = names.labels[0];
+    const int j_set = st.labels[acc.label].set;
+    const SearchFact& fact = facts_.neighbourhoods.at(acc.id);
+    UsesDx dx;
+    dx.visit(acc.condition);
+    dx.visit(acc.body);
+    ReadsLabel reads_j(acc.label);
+    reads_j.visit(acc.condition);
+    reads_j.visit(acc.body);
+
+    // The accumulator and its identity element.
+    switch (acc.reduction) {
+      case Reduction::Sum:
+        linef("{} {} = {};", cpp_type(acc.type), acc_name,
+              acc.type == Type::Vec ? "Vec::zero()" : emit_literal(acc.type, 0));
+        break;
+      case Reduction::Count: linef("std::int64_t {} = 0;", acc_name); break;
+      case Reduction::Min:
+      case Reduction::Max:
+        linef("{} {} = {}std::numeric_limits<{}>::{}();", cpp_type(acc.type), acc_name,
+              acc.reduction == Reduction::Max && acc.type == Type::Real ? "-" : "", cpp_type(acc.type),
+              acc.type == Type::Real ? "infinity" : acc.reduction == Reduction::Min ? "max" : "min");
+        break;
+    }
+
+    ExpressionNames inner = names;
+    inner.dx_norm = dx.norm ? "dx_norm" : "";
+    std::string body;
+    if (dx.norm) body += "const double dx_norm = partc::norm(dx);\n";
+    std::string update;
+    switch (acc.reduction) {
+      case Reduction::Sum: update = acc_name + " += " + expression(acc.body, inner) + ";"; break;
+      case Reduction::Count: update = "++" + acc_name + ";"; break;
+      case Reduction::Min:
+      case Reduction::Max:
+        update = fmt::format("{0} = std::{1}<{2}>({0}, {3});", acc_name, reduction_name(acc.reduction),
+                             cpp_type(acc.type), expression(acc.body, inner));
+        break;
+    }
+    body += acc.condition ? "if (" + expression(acc.condition, inner) + ") " + update : update;
+
+    const std::string home_p = names.array(st.set, kPosition);
+    if (fact.kind == SearchFact::Kind::Neighbours) {
+      linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_member_[j_set], home_p,
+            i, reads_j.found ? " " + j : "", dx.dx ? " dx" : "");
+      line(body);
+      line("});");
+    } else {
+      linef("for (std::size_t {0} = 0; {0} < {1}.size(); ++{0}) {{", j, set_member_[j_set]);
+      if (dx.dx)
+        linef("const Vec dx = domain_.minimum_image({}[{}] - {}[{}]);", names.array(j_set, kPosition), j,
+              home_p, i);
+      line(body);
+      line("}");
+    }
+  }
+
+  void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer) {
+    const std::string target = names.array(st.set, st.var) + "[" + names.labels[0] + "]";
+    const bool wrap = st.var == kPosition &&
+                      std::find(m_.domain.periodic.begin(), m_.domain.periodic.end(), true) !=
+                          m_.domain.periodic.end();
+    const std::string value = expression(st.value, names);
+    if (buffer.empty() && !wrap) {
+      linef("{} {} {};", target, assign_op_spelling(st.op), value);
+      return;
+    }
+    // The new value as one expression: target op value.
+    std::string updated = value;
+    if (st.op != AssignOp::Set) {
+      static const BinaryOp ops[] = {BinaryOp::Add, BinaryOp::Add, BinaryOp::Sub, BinaryOp::Mul,
+                                     BinaryOp::Div};
+      const BinaryOp op = ops[static_cast<int>(st.op)];
+      updated = fmt::format("{} {} {}", target, binary_op_spelling(op),
+                            codegen::emit_operand(st.value, op, m_, names));
+    }
+    if (wrap) updated = "domain_.wrap(" + updated + ")";
+    linef("{} = {};", buffer.empty() ? target : buffer + "[" + names.labels[0] + "]", updated);
+  }
+
+  // ---- state ------------------------------------------------------------
+
+  void state() {
+    line("Params params_;");
+    for (std::size_t c = 0; c < m_.consts.size(); ++c) {
+      const Const& k = m_.consts[c];
+      if (auto value = evaluate_constant(k.value, m_))
+        linef("static constexpr {} {} = {};  // {}", cpp_type(k.type), const_member_[c],
+              emit_literal(k.type, *value), source_text(k.loc));
+      else
+        linef("{} {}{{}};  // {}", cpp_type(k.type), const_member_[c], source_text(k.loc));
+    }
+    std::vector<std::string> lo, hi, periodic;
+    for (int k = 0; k < m_.dim; ++k) {
+      lo.push_back(emit_literal(Type::Real, m_.domain.lo[k]));
+      hi.push_back(emit_literal(Type::Real, m_.domain.hi[k]));
+      periodic.push_back(m_.domain.periodic[k] ? "true" : "false");
+    }
+    linef("partc::Domain<{}> domain_{{Vec{{{{{}}}}}, Vec{{{{{}}}}}, {{{{{}}}}}}};", m_.dim,
+          fmt::join(lo, ", "), fmt::join(hi, ", "), fmt::join(periodic, ", "));
+    line("partc::CounterRng rng_;");
+    line("std::int64_t step_ = 0;");
+    for (std::size_t s = 0; s < m_.sets.size(); ++s) {
+      linef("{} {};", set_type_[s], set_member_[s]);
+      linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],
+            m_.sets[s].name);
+      if (search_member_[s].empty()) continue;
+      linef("partc::NeighbourSearch<{}> {};", m_.dim, search_member_[s]);
+      linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", search_member_[s]);
+      linef("double {}radius_ = 0;", search_member_[s]);
+    }
+    for (const auto& [key, buffer] : buffers_)
+      linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second, buffer.first,
+            m_.sets[key.first].vars[key.second].name);
+  }
+
+  const Model& m_;
+  const ModelFacts& facts_;
+  const SourceFile& file_;
+  const CodegenOptions& options_;
+  std::string out_;
+  std::string cls_;
+  NameTable members_;
+  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, search_member_;
+  std::vector<Kernel> kernels_;
+  std::vector<StageKind> kernel_stage_;
+  std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element
+};
+
+}  // namespace
+
+std::string generate_cpp(const Model& model, const ModelFacts& facts, const SourceFile& file,
+                         const CodegenOptions& options) {
+  return ModelEmitter(model, facts, file, options).run();
+}
+
+}  // namespace partc

@@ -1,0 +1,164 @@
+// partc: compiles a .part model into a C++ translation unit.
+//
+//   partc model.part -o model.cpp [--main] [--emit=ast|ir|cpp] [--explain]
+//
+// Exit status: 0 success, 1 the model has errors, 2 bad command line,
+// 3 an I/O failure or a partc bug. Output files are written whole or not at
+// all: the text goes to a temporary file renamed into place at the end.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include "ast/printer.hpp"
+#include "driver/pipeline.hpp"
+#include "grammar/parser.hpp"
+#include "ir/printer.hpp"
+#include "support/diagnostics.hpp"
+
+namespace {
+
+const char* const kUsage =
+    "usage: partc MODEL.part [-o OUTPUT] [--main] [--emit=ast|ir|cpp] [--explain]\n"
+    "\n"
+    "Compiles a particle model into one C++17 translation unit.\n"
+    "\n"
+    "  -o OUTPUT         write to OUTPUT (default: standard output)\n"
+    "  --main            also emit main(): the command-line driver (see --help of the model)\n"
+    "  --emit=WHAT       ast: the syntax tree; ir: the typed IR; cpp: C++ (the default)\n"
+    "  --explain         print, per statement, the search structure chosen for each\n"
+    "                    accumulation and whether the update is buffered, and why\n"
+    "  --version         print the version\n"
+    "  --help            print this help\n";
+
+struct Options {
+  std::string input;
+  std::optional<std::string> output;
+  bool driver_main = false;
+  bool explain = false;
+  std::string emit = "cpp";
+};
+
+struct UsageError {
+  std::string message;
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "-o") {
+      if (k + 1 >= argc) throw UsageError{"-o needs a file name"};
+      o.output = argv[++k];
+    } else if (arg == "--main") {
+      o.driver_main = true;
+    } else if (arg == "--explain") {
+      o.explain = true;
+    } else if (arg.rfind("--emit=", 0) == 0) {
+      o.emit = arg.substr(7);
+      if (o.emit != "ast" && o.emit != "ir" && o.emit != "cpp")
+        throw UsageError{"--emit takes ast, ir or cpp, not '" + o.emit + "'"};
+    } else if (!arg.empty() && arg[0] == '-' && arg != "-") {
+      throw UsageError{"unknown option '" + arg + "'"};
+    } else if (o.input.empty()) {
+      o.input = arg;
+    } else {
+      throw UsageError{"more than one input file ('" + o.input + "' and '" + arg + "')"};
+    }
+  }
+  if (o.input.empty()) throw UsageError{"no input file"};
+  return o;
+}
+
+// Writes the whole text or nothing.
+void write_output(const std::optional<std::string>& path, const std::string& text) {
+  if (!path || *path == "-") {
+    std::cout << text;
+    return;
+  }
+  const std::string temporary = *path + ".partc-tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) {
+      const std::string why = std::strerror(errno);
+      std::remove(temporary.c_str());
+      throw std::runtime_error("cannot write '" + *path + "': " + why);
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, *path, error);
+  if (error) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot write '" + *path + "': " + error.message());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (arg == "--version") {
+      std::cout << "partc " << PARTC_VERSION << "\n";
+      return 0;
+    }
+  }
+  Options options;
+  try {
+    options = parse_options(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << "partc: error: " << e.message << "\n(run 'partc --help' for usage)\n";
+    return 2;
+  }
+
+  std::optional<partc::SourceFile> file;
+  try {
+    file = partc::read_source_file(options.input);
+  } catch (const std::exception& e) {
+    std::cerr << "partc: error: " << e.what() << "\n";
+    return 2;
+  }
+
+  try {
+    if (options.emit == "ast") {
+      write_output(options.output, partc::ast::to_string(partc::parse_program(*file), *file));
+      return 0;
+    }
+    const partc::Compilation c = partc::analyse(*file);
+    if (options.explain) std::cout << partc::explain(c, *file);
+    if (options.emit == "ir") {
+      write_output(options.output, partc::ir::to_string(c.model));
+      return 0;
+    }
+    if (options.explain && !options.output) return 0;
+    partc::CodegenOptions codegen;
+    codegen.driver_main = options.driver_main;
+    codegen.source_name = std::filesystem::path(options.input).filename().string();
+    const std::string code = partc::generate_cpp(c.model, c.facts, *file, codegen);
+    const std::string name = options.output ? *options.output : "model.cpp";
+    write_output(options.output, partc::format_cpp(code, name));
+    return 0;
+  } catch (const partc::CompileError& e) {
+    for (const partc::Diagnostic& d : e.diagnostics())
+      std::cerr << partc::format_diagnostic(*file, d);
+    if (e.diagnostics().size() > 1)
+      std::cerr << e.diagnostics().size() << " errors\n";
+    return 1;
+  } catch (const partc::InternalError& e) {
+    std::cerr << "partc: internal error: partc bug: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "partc: error: " << e.what() << "\n";
+    return 3;
+  }
+}

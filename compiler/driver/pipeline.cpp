@@ -1,0 +1,67 @@
+#include "driver/pipeline.hpp"
+
+#include <fmt/format.h>
+
+#include "grammar/parser.hpp"
+#include "ir/visitor.hpp"
+#include "sema/sema.hpp"
+
+namespace partc {
+
+Compilation analyse(const SourceFile& file) {
+  Compilation c;
+  // Text to syntax tree; syntax errors stop here, with what was expected.
+  c.ast = parse_program(file);
+  // Names and types: everything later can trust the IR to be well typed.
+  c.model = build_ir(c.ast, file);
+  // Facts the code generator acts on. Each pass reads the IR only.
+  c.facts.aliasing = detect_aliasing(c.model);
+  c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
+  return c;
+}
+
+namespace {
+class AccumulationIds : public ir::Visitor {
+ public:
+  std::vector<const ir::Accumulate*> found;
+
+ public:
+  using ir::Visitor::visit;
+
+ protected:
+  void visit(const ir::Accumulate& n) override {
+    found.push_back(&n);
+    ir::Visitor::visit(n);
+  }
+};
+}  // namespace
+
+std::string explain(const Compilation& c, const SourceFile& file) {
+  std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
+                                c.model.sets.size(), c.model.stages.size());
+  for (std::size_t g = 0; g < c.model.stages.size(); ++g) {
+    const ir::Stage& stage = c.model.stages[g];
+    for (std::size_t k = 0; k < stage.statements.size(); ++k) {
+      const ir::Statement& st = stage.statements[k];
+      const LineColumn at = file.line_column(st.loc.begin);
+      out += fmt::format("{}:{}: {} {}\n", file.path(), at.line,
+                         stage.kind == ir::StageKind::Init ? "init" : "step", file.slice(st.loc));
+      out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
+      AccumulationIds ids;
+      ids.visit(st.value);
+      for (const ir::Accumulate* acc : ids.found) {
+        const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
+        out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
+                           st.labels[acc->label].name, fact.reason);
+        if (fact.kind == SearchFact::Kind::Neighbours)
+          out +=
+              "    at run time: brute force below partc::NeighbourSearch's measured crossover "
+              "(or when a periodic side holds fewer than 3 cells), else an ordered cell list of "
+              "cells at least that radius wide, rebuilt only after positions change\n";
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace partc

@@ -1,0 +1,25 @@
+// The story of the compiler: the passes, in the order they run.
+#pragma once
+
+#include <string>
+
+#include "ast/ast.hpp"
+#include "codegen/codegen.hpp"
+#include "ir/ir.hpp"
+#include "support/source.hpp"
+
+namespace partc {
+
+struct Compilation {
+  ast::Program ast;
+  ir::Model model;
+  ModelFacts facts;
+};
+
+// Front end and analyses; throws CompileError for a bad model.
+Compilation analyse(const SourceFile& file);
+
+// --explain: per statement, what was decided and why.
+std::string explain(const Compilation& c, const SourceFile& file);
+
+}  // namespace partc

@@ -1,0 +1,249 @@
+// The typed intermediate representation: what a model means.
+//
+// Sema builds it from the AST once names are resolved and types checked;
+// analyses read it and record facts beside it; codegen prints it.
+// Expressions are immutable nodes shared through Expr handles, each with a
+// kind tag (for cheap `as<T>()`), a type and a source location. Passes that
+// rewrite expressions derive from Mutator (ir/mutator.hpp); passes that
+// only look derive from Visitor (ir/visitor.hpp).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/types.hpp"
+#include "support/source.hpp"
+
+namespace partc::ir {
+
+enum class ExprKind {
+  Literal,
+  ParamRef,
+  ConstRef,
+  VarRef,
+  Dx,
+  Unary,
+  Binary,
+  Call,
+  MakeVec,
+  Component,
+  Random,
+  Accumulate,
+};
+
+struct ExprNode {
+  ExprNode(ExprKind k, Type t, Location l) : kind(k), type(t), loc(l) {}
+  virtual ~ExprNode() = default;
+  const ExprKind kind;
+  const Type type;
+  const Location loc;
+};
+using Expr = std::shared_ptr<const ExprNode>;
+
+template <class Node>
+const Node* as(const Expr& e) {
+  return e && e->kind == Node::node_kind ? static_cast<const Node*>(e.get()) : nullptr;
+}
+
+// A literal bool, int or real (the type says which field holds it).
+struct Literal : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Literal;
+  Literal(Type t, double v, Location l) : ExprNode(node_kind, t, l), value(v) {}
+  const double value;  // ints up to 2^53 and bools (0/1) are exact in a double
+};
+
+struct ParamRef : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::ParamRef;
+  ParamRef(Type t, int i, Location l) : ExprNode(node_kind, t, l), param(i) {}
+  const int param;  // index into Model::params
+};
+
+struct ConstRef : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::ConstRef;
+  ConstRef(Type t, int i, Location l) : ExprNode(node_kind, t, l), constant(i) {}
+  const int constant;  // index into Model::consts
+};
+
+// A particle variable read through a label: v[i], p[j].
+struct VarRef : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::VarRef;
+  VarRef(Type t, int s, int v, int lab, Location l)
+      : ExprNode(node_kind, t, l), set(s), var(v), label(lab) {}
+  const int set;    // index into Model::sets
+  const int var;    // index into ParticleSet::vars
+  const int label;  // index into Statement::labels
+};
+
+// dx: the shortest vector from particle `from` (the statement's label) to
+// particle `to` (the innermost accumulation's label).
+struct Dx : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Dx;
+  Dx(int from_label, int to_label, Location l)
+      : ExprNode(node_kind, Type::Vec, l), from(from_label), to(to_label) {}
+  const int from;
+  const int to;
+};
+
+enum class UnaryOp { Neg, Not };
+struct Unary : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Unary;
+  Unary(Type t, UnaryOp o, Expr a, Location l)
+      : ExprNode(node_kind, t, l), op(o), operand(std::move(a)) {}
+  const UnaryOp op;
+  const Expr operand;
+};
+
+enum class BinaryOp { Add, Sub, Mul, Div, Lt, Le, Gt, Ge, Eq, Ne, And, Or };
+const char* binary_op_spelling(BinaryOp op);  // as in .part: "+", "<=", "and"
+struct Binary : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Binary;
+  Binary(Type t, BinaryOp o, Expr a, Expr b, Location l)
+      : ExprNode(node_kind, t, l), op(o), lhs(std::move(a)), rhs(std::move(b)) {}
+  const BinaryOp op;
+  const Expr lhs, rhs;
+};
+
+// Built-in pure functions. Norm covers both |v| and norm(v).
+enum class Function { Exp, Log, Sqrt, Pow, Abs, Min, Max, Dot, Norm, Floor, Sin, Cos };
+const char* function_name(Function f);
+struct Call : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Call;
+  Call(Type t, Function f, std::vector<Expr> a, Location l)
+      : ExprNode(node_kind, t, l), fn(f), args(std::move(a)) {}
+  const Function fn;
+  const std::vector<Expr> args;
+};
+
+// vec(a, b, ...): one real per dimension.
+struct MakeVec : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::MakeVec;
+  MakeVec(std::vector<Expr> c, Location l)
+      : ExprNode(node_kind, Type::Vec, l), components(std::move(c)) {}
+  const std::vector<Expr> components;
+};
+
+// v.x, v.y, ...: one component of a vec.
+struct Component : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Component;
+  Component(Expr v, int k, Location l)
+      : ExprNode(node_kind, Type::Real, l), vec(std::move(v)), index(k) {}
+  const Expr vec;
+  const int index;
+};
+
+// uniform(), normal(), uniform_vec(), normal_vec(). Each call site has its
+// own stream so draws are independent; a draw is keyed by (seed, particle
+// id, step, stream, component), so it does not depend on particle order or
+// thread count.
+enum class Distribution { Uniform, Normal };
+struct Random : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Random;
+  Random(Type t, Distribution d, int s, Location l)
+      : ExprNode(node_kind, t, l), distribution(d), stream(s) {}
+  const Distribution distribution;
+  const int stream;
+};
+
+// sum / min / max / count over particles `label` that satisfy `condition`.
+enum class Reduction { Sum, Min, Max, Count };
+const char* reduction_name(Reduction r);
+struct Accumulate : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Accumulate;
+  Accumulate(Type t, Reduction r, int lab, Expr cond, Expr b, int i, Location l)
+      : ExprNode(node_kind, t, l),
+        reduction(r),
+        label(lab),
+        condition(std::move(cond)),
+        body(std::move(b)),
+        id(i) {}
+  const Reduction reduction;
+  const int label;       // index into Statement::labels
+  const Expr condition;  // null: every particle
+  const Expr body;       // null for count
+  const int id;          // unique within the model, for naming and facts
+};
+
+// ---- Declarations -------------------------------------------------------
+
+struct Param {
+  std::string name;
+  Type type;
+  Expr default_value;  // a Literal after fold_constants
+  Location loc;
+};
+
+// A named value computed from params and literals once they are known.
+struct Const {
+  std::string name;
+  Type type;
+  Expr value;
+  Location loc;
+};
+
+struct Variable {
+  std::string name;
+  Type type;
+  Expr initial;  // per particle at creation; null means zero
+  bool builtin;  // p, id, alive
+  Location loc;
+};
+
+// The builtin variables sit first in every set, in this order.
+enum BuiltinVar { kPosition = 0, kId = 1, kAlive = 2, kFirstUserVar = 3 };
+
+struct ParticleSet {
+  std::string name;
+  Expr initial_count;  // int, from params/consts
+  std::vector<Variable> vars;
+  Location loc;
+  int find_var(const std::string& var_name) const;  // -1 when absent
+};
+
+struct Label {
+  std::string name;
+  int set;
+};
+
+enum class AssignOp { Set, Add, Sub, Mul, Div };
+const char* assign_op_spelling(AssignOp op);
+
+// target[labels[0]] op= value, run for every particle of the target's set.
+struct Statement {
+  int set;
+  int var;
+  AssignOp op;
+  Expr value;
+  std::vector<Label> labels;  // [0] is the statement's own label (i)
+  Location loc;
+  int line = 0;  // 1-based line in the .part file
+};
+
+enum class StageKind { Init, Step };
+struct Stage {
+  StageKind kind;
+  int set;
+  std::vector<Statement> statements;
+  Location loc;
+};
+
+struct Domain {
+  std::vector<double> lo, hi;
+  std::vector<bool> periodic;
+};
+
+struct Model {
+  std::string name;
+  int dim = 0;
+  Domain domain;
+  std::vector<Param> params;
+  std::vector<Const> consts;
+  std::vector<ParticleSet> sets;
+  std::vector<Stage> stages;  // in file order
+  int random_streams = 0;
+  int accumulations = 0;
+};
+
+}  // namespace partc::ir

@@ -1,0 +1,69 @@
+// Spellings of IR operators and functions, as a .part file writes them.
+#include "ir/ir.hpp"
+
+namespace partc::ir {
+
+const char* binary_op_spelling(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Add: return "+";
+    case BinaryOp::Sub: return "-";
+    case BinaryOp::Mul: return "*";
+    case BinaryOp::Div: return "/";
+    case BinaryOp::Lt: return "<";
+    case BinaryOp::Le: return "<=";
+    case BinaryOp::Gt: return ">";
+    case BinaryOp::Ge: return ">=";
+    case BinaryOp::Eq: return "==";
+    case BinaryOp::Ne: return "!=";
+    case BinaryOp::And: return "and";
+    case BinaryOp::Or: return "or";
+  }
+  return "?";
+}
+
+const char* function_name(Function f) {
+  switch (f) {
+    case Function::Exp: return "exp";
+    case Function::Log: return "log";
+    case Function::Sqrt: return "sqrt";
+    case Function::Pow: return "pow";
+    case Function::Abs: return "abs";
+    case Function::Min: return "min";
+    case Function::Max: return "max";
+    case Function::Dot: return "dot";
+    case Function::Norm: return "norm";
+    case Function::Floor: return "floor";
+    case Function::Sin: return "sin";
+    case Function::Cos: return "cos";
+  }
+  return "?";
+}
+
+const char* reduction_name(Reduction r) {
+  switch (r) {
+    case Reduction::Sum: return "sum";
+    case Reduction::Min: return "min";
+    case Reduction::Max: return "max";
+    case Reduction::Count: return "count";
+  }
+  return "?";
+}
+
+const char* assign_op_spelling(AssignOp op) {
+  switch (op) {
+    case AssignOp::Set: return "=";
+    case AssignOp::Add: return "+=";
+    case AssignOp::Sub: return "-=";
+    case AssignOp::Mul: return "*=";
+    case AssignOp::Div: return "/=";
+  }
+  return "?";
+}
+
+int ParticleSet::find_var(const std::string& var_name) const {
+  for (std::size_t k = 0; k < vars.size(); ++k)
+    if (vars[k].name == var_name) return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace partc::ir

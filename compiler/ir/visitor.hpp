@@ -1,0 +1,42 @@
+// Read-only traversal of IR expressions.
+//
+// Override the visit() of the nodes a pass cares about; the defaults visit
+// children left to right, so a pass that looks for one kind of node is a
+// few lines long. Call visit(expr) on a root; null handles are skipped.
+#pragma once
+
+#include "ir/ir.hpp"
+
+namespace partc::ir {
+
+class Visitor {
+ public:
+  virtual ~Visitor() = default;
+  void visit(const Expr& e);
+
+ protected:
+  virtual void visit(const Literal&) {}
+  virtual void visit(const ParamRef&) {}
+  virtual void visit(const ConstRef&) {}
+  virtual void visit(const VarRef&) {}
+  virtual void visit(const Dx&) {}
+  virtual void visit(const Random&) {}
+  virtual void visit(const Unary& n) { visit(n.operand); }
+  virtual void visit(const Binary& n) {
+    visit(n.lhs);
+    visit(n.rhs);
+  }
+  virtual void visit(const Call& n) {
+    for (const Expr& a : n.args) visit(a);
+  }
+  virtual void visit(const MakeVec& n) {
+    for (const Expr& c : n.components) visit(c);
+  }
+  virtual void visit(const Component& n) { visit(n.vec); }
+  virtual void visit(const Accumulate& n) {
+    visit(n.condition);
+    visit(n.body);
+  }
+};
+
+}  // namespace partc::ir

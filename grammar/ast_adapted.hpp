@@ -1,0 +1,23 @@
+// Boost.Fusion views of the AST structs, so X3 sequences can fill them.
+// Single-member structs are filled by semantic actions in rules_def.hpp
+// instead (X3 mishandles one-element fusion sequences).
+#pragma once
+
+#include <boost/fusion/include/adapt_struct.hpp>
+
+#include "ast/ast.hpp"
+
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Indexed, var, label)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::BinaryOp, op, rhs)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Chain, first, rest)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Unary, op, operand)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Postfix, base, components)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::LabelBinding, label, set)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Call, callee, args)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Assignment, target, op, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::DomainDecl, lo, hi, periodic)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::ParamDecl, name, type, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::ConstDecl, name, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::VarDecl, name, type, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::ParticlesDecl, name, count, vars)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::StageBlock, kind, set, body)

@@ -1,0 +1,13 @@
+// The entry point of the front end: .part text in, AST out.
+#pragma once
+
+#include "ast/ast.hpp"
+#include "support/source.hpp"
+
+namespace partc {
+
+// Parses a whole file. Throws CompileError (with the position of the first
+// syntax error and what was expected there) when the text does not parse.
+ast::Program parse_program(const SourceFile& file);
+
+}  // namespace partc

@@ -1,0 +1,183 @@
+// partc/cell_grid.hpp: CellGrid<D>, the geometry shared by LinkedCellList and
+// OrderedCellList: cell sizes, the cell of a point, and the walk over the cells
+// near a query point with per-cell periodic shifts. It stores no points; each
+// cell list supplies how to visit the points of a run of cells.
+//
+// Cells: row-major with the last dimension contiguous, n_k = floor(L_k / radius)
+// cells of width L_k / n_k >= radius, the total capped at 2 * points + 64 by
+// widening all cells by one factor (a tiny radius cannot exhaust memory). A
+// non-periodic dimension without a finite positive length gets one cell.
+//
+// Surprises:
+// - The cells visited per dimension are not a fixed 3-cell stencil: they are the
+//   cells of [q - reach, q + reach] (reach = radius * (1 + 1e-12)). Cell indices
+//   are computed by one monotone floating-point map, so every point within reach
+//   lies in a visited cell whatever the rounding (points exactly on cell edges,
+//   cell widths a hair below radius). Usually that is 2 or 3 cells, at most 4.
+// - Periodic dimensions: points are stored wrapped into [lo, hi) and the query
+//   is examined as up to three images qs = q - s*L (s = -1, 0, 1). Then
+//   dx = p - qs is the minimum image with no per-pair minimum_image call: with
+//   >= 3 cells, L >= 3 * radius, so at most one image of a point is within reach
+//   (a cell visited under two images cannot report a point twice).
+// - A periodic dimension with < 3 cells (radius > L/3, or widened cells) would
+//   break that; there every cell is visited once and the pair falls back to the
+//   exact minimum image in that dimension ("exact mode"). shifts_suffice() tells
+//   a caller that no dimension needs it.
+// - Points/queries outside a non-periodic dimension are clamped to the edge cell
+//   (exact: clamping keeps the index map monotone). NaN coordinates go to cell 0
+//   and never match (NaN fails the distance test).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+
+#include "partc/domain.hpp"
+#include "partc/vec.hpp"
+
+namespace partc {
+
+template <int D>
+class CellGrid {
+ public:
+  CellGrid() = default;
+
+  // Throws std::invalid_argument for a bad radius or periodic length (check_search_arguments).
+  CellGrid(const Domain<D>& domain, double radius, std::size_t n_points) : domain_(domain) {
+    check_search_arguments(domain, radius);
+    reach_ = radius * (1 + 1e-12);
+    squared_reach_ = radius * radius * (1 + 1e-12);
+    const std::array<double, D> cells = cells_per_dim(domain, radius, n_points);
+    exact_domain_ = domain;
+    for (int k = D - 1; k >= 0; --k) {
+      const double L = domain.hi[k] - domain.lo[k];
+      n_[k] = static_cast<std::size_t>(cells[k]);
+      inv_width_[k] = has_length(L) ? cells[k] / L : 0.0;  // 0: every coordinate maps to cell 0
+      stride_[k] = k == D - 1 ? 1 : stride_[k + 1] * n_[k + 1];
+      exact_domain_.periodic[k] = domain.periodic[k] && n_[k] < 3;
+      exact_ = exact_ || exact_domain_.periodic[k];
+    }
+    cell_count_ = stride_[0] * n_[0];
+  }
+
+  std::size_t cell_count() const { return cell_count_; }
+
+  // True when every periodic dimension has >= 3 cells: no pair needs minimum_image.
+  bool shifts_suffice() const { return !exact_; }
+
+  // The (linear) cell of p; p must already be wrapped into the periodic box.
+  std::size_t cell_of(const Vec<D>& p) const {
+    std::size_t cell = 0;
+    for (int k = 0; k < D; ++k) cell += coord(k, p[k]) * stride_[k];
+    return cell;
+  }
+
+  // Calls run(first_cell, last_cell, qs, exact) for every run of cells
+  // first_cell..last_cell (consecutive in the last dimension) that may hold a
+  // point within reach of q. qs is the query image to subtract from the points
+  // of those cells; exact is std::true_type in exact mode (see report_if_near).
+  template <class Run>
+  void for_each_run(const Vec<D>& q, Run&& run) const {
+    Spans spans{};
+    const Vec<D> qw = domain_.wrap(q);
+    for (int k = 0; k < D; ++k) {
+      const double L = domain_.hi[k] - domain_.lo[k];
+      if (!domain_.periodic[k]) {
+        add_span(spans, k, q[k]);
+      } else if (exact_domain_.periodic[k]) {
+        spans.span[k][spans.count[k]++] = {qw[k], 0, n_[k] - 1};
+      } else {
+        // The image s = +1 (points seen across hi) matters only if q + reach reaches past hi,
+        // s = -1 only if q - reach reaches below lo; the tests are exact (see header).
+        if (qw[k] - L + reach_ >= domain_.lo[k]) add_span(spans, k, qw[k] - L);
+        add_span(spans, k, qw[k]);
+        if (!(qw[k] + L - reach_ > domain_.hi[k])) add_span(spans, k, qw[k] + L);
+      }
+    }
+    Vec<D> qs = qw;
+    if (exact_)
+      visit<0, std::true_type>(spans, 0, qs, run);
+    else
+      visit<0, std::false_type>(spans, 0, qs, run);
+  }
+
+  // The pair test of the query loop: f(j, dx) when |dx|^2 <= radius^2 (1 + 1e-12).
+  template <class Exact, class F>
+  void report_if_near(Exact, std::size_t j, const Vec<D>& p, const Vec<D>& qs, F& f) const {
+    Vec<D> dx = p - qs;
+    if constexpr (Exact::value) dx = exact_domain_.minimum_image(dx);
+    if (squared_norm(dx) <= squared_reach_) f(j, dx);
+  }
+
+ private:
+  // Per dimension: up to three query images, each with its range of cell coordinates.
+  struct Span {
+    double qs;
+    std::size_t first, last;
+  };
+  struct Spans {
+    std::array<std::array<Span, 3>, D> span;
+    std::array<int, D> count;
+  };
+
+  static bool has_length(double L) { return L > 0.0 && std::isfinite(L); }
+
+  // floor(L / (radius * widen)) cells per dimension, with widen = 1 unless the
+  // total would exceed the cap; the cap is soft by the rounding of the logs.
+  static std::array<double, D> cells_per_dim(const Domain<D>& domain, double radius,
+                                             std::size_t n_points) {
+    const double log_cap = std::log(2.0 * static_cast<double>(n_points) + 64.0);
+    std::array<double, D> cells;
+    for (double widen = 1.0;;) {
+      double log_total = 0.0;
+      for (int k = 0; k < D; ++k) {
+        const double L = domain.hi[k] - domain.lo[k];
+        cells[k] = has_length(L) ? std::max(1.0, std::floor(L / (radius * widen))) : 1.0;
+        log_total += std::log(cells[k]);
+      }
+      if (log_total <= log_cap) return cells;
+      // Dimensions held at one cell make one step undershoot; the 1.001 ensures progress.
+      widen *= std::max(1.001, std::exp((log_total - log_cap) / D));
+    }
+  }
+
+  // Cell coordinate of x in dimension k, clamped to the grid (NaN -> 0); monotone in x.
+  std::size_t coord(int k, double x) const {
+    const double t = std::floor((x - domain_.lo[k]) * inv_width_[k]);
+    if (!(t > 0.0)) return 0;
+    const std::size_t last = n_[k] - 1;
+    return t < static_cast<double>(last) ? static_cast<std::size_t>(t) : last;
+  }
+
+  void add_span(Spans& spans, int k, double qs) const {
+    spans.span[k][spans.count[k]++] = {qs, coord(k, qs - reach_), coord(k, qs + reach_)};
+  }
+
+  template <int K, class Exact, class Run>
+  void visit(const Spans& spans, std::size_t base, Vec<D>& qs, Run& run) const {
+    for (int m = 0; m < spans.count[K]; ++m) {
+      const Span& s = spans.span[K][m];
+      qs[K] = s.qs;
+      if constexpr (K + 1 == D) {
+        run(base + s.first, base + s.last, static_cast<const Vec<D>&>(qs), Exact{});
+      } else {
+        for (std::size_t i = s.first; i <= s.last; ++i)
+          visit<K + 1, Exact>(spans, base + i * stride_[K], qs, run);
+      }
+    }
+  }
+
+  Domain<D> domain_{};
+  Domain<D> exact_domain_{};  // periodic only in the dimensions that need minimum_image
+  std::array<std::size_t, D> n_{};
+  std::array<std::size_t, D> stride_{};
+  Vec<D> inv_width_{};
+  double reach_ = 0.0;
+  double squared_reach_ = 0.0;
+  std::size_t cell_count_ = 0;
+  bool exact_ = false;
+};
+
+}  // namespace partc

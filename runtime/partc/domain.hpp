@@ -1,0 +1,80 @@
+// partc/domain.hpp: Domain<D>, the axis-aligned simulation box [lo, hi) with
+// per-dimension periodicity, and the two periodic maps every kernel needs.
+//
+// Surprises:
+// - minimum_image maps periodic components into the CLOSED interval [-L/2, L/2]
+//   (a displacement of exactly L/2 stays +L/2); it is exact for any magnitude,
+//   many box lengths included (IEEE remainder), with a cheap path for |d| <= 2L.
+// - wrap maps periodic components into the HALF-OPEN [lo, hi): x - lo + L can
+//   round up to exactly L, so a result that would land on hi is returned as lo
+//   (the same point of the torus).
+// - NaN stays NaN through both maps (+-inf becomes NaN), so a blow-up is never
+//   hidden inside the box; non-periodic components are never touched.
+// - check_search_arguments validates what every neighbour search needs, so the
+//   search structures share one message.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "partc/vec.hpp"
+
+namespace partc {
+
+template <int D>
+struct Domain {
+  Vec<D> lo, hi;
+  std::array<bool, D> periodic;
+
+  Vec<D> length() const { return hi - lo; }
+
+  Vec<D> minimum_image(Vec<D> d) const {
+    for (int k = 0; k < D; ++k) {
+      if (!periodic[k]) continue;
+      const double L = hi[k] - lo[k];
+      const double half = 0.5 * L;
+      const double x = d[k];
+      // One shift covers every difference of two wrapped points and is exact
+      // (Sterbenz's lemma) for L/2 < |x| <= 2L. It is written as arithmetic, not
+      // a branch: in a kernel about half of the pairs need it, unpredictably.
+      double image = x - L * static_cast<double>(x > half) + L * static_cast<double>(x < -half);
+      if (!(std::abs(image) <= half)) image = std::remainder(x, L);  // |x| > 1.5L or NaN: rare
+      d[k] = image;
+    }
+    return d;
+  }
+
+  Vec<D> wrap(Vec<D> x) const {
+    for (int k = 0; k < D; ++k) {
+      if (!periodic[k] || (x[k] >= lo[k] && x[k] < hi[k])) continue;
+      const double L = hi[k] - lo[k];
+      double y = lo[k] + std::fmod(x[k] - lo[k], L);  // fmod is exact; the sums round
+      if (y < lo[k]) y += L;
+      if (y >= hi[k] || y < lo[k]) y = lo[k];  // round-off landed on hi (or a hair below lo)
+      x[k] = y;
+    }
+    return x;
+  }
+};
+
+// Throws std::invalid_argument unless radius is positive (not NaN) and every
+// periodic dimension has finite lo < hi (minimum_image and wrap need a length).
+template <int D>
+void check_search_arguments(const Domain<D>& domain, double radius) {
+  const auto fail = [](auto&&... parts) {
+    std::ostringstream message;
+    message << "partc: neighbour search: ";
+    (message << ... << parts);
+    throw std::invalid_argument(message.str());
+  };
+  if (!(radius > 0.0)) fail("radius must be positive, got ", radius);
+  for (int k = 0; k < D; ++k) {
+    const double lo = domain.lo[k], hi = domain.hi[k];
+    if (domain.periodic[k] && !(std::isfinite(lo) && std::isfinite(hi) && lo < hi))
+      fail("periodic dimension ", k, " needs finite lo < hi, got [", lo, ", ", hi, ")");
+  }
+}
+
+}  // namespace partc

@@ -1,0 +1,318 @@
+// partc/driver.hpp: the command-line program around a generated model.
+//
+//   int main(int argc, char** argv) { return partc::run_driver<md>(argc, argv); }
+//
+// Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
+// [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
+// --quiet; "--option=value" works too. Exit status: 0 success, 1 bad input
+// file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
+//
+// Surprises:
+// - Every argument is checked before any work, including the parameter
+//   values (through the model's set_param) and that output directories exist:
+//   a typo costs a second, not a run.
+// - With --check-every M > 0 the final state is always checked too, so
+//   --output never holds a NaN; on a blow-up no output file is written (VTK
+//   frames of earlier steps stay: they are complete and help to find the cause).
+// - The model's sets are discovered through for_each_set on a freshly
+//   constructed model, before init or load: generated models hold their sets
+//   as members, so this needs no extra API.
+// - VTK "time" is the step number: the driver does not know the model's dt.
+#pragma once
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "partc/csv.hpp"
+#include "partc/errors.hpp"
+#include "partc/finite.hpp"
+#include "partc/model_support.hpp"  // ParamInfo: a model used as a library needs it too
+#include "partc/vec.hpp"
+#include "partc/vtk.hpp"
+
+namespace partc {
+
+namespace detail {
+
+struct DriverOptions {
+  std::int64_t steps = 10;
+  std::uint64_t seed = 0;
+  std::vector<std::pair<std::string, std::string>> inputs;  // (set, file)
+  std::string output;                                       // "" = no CSV output
+  std::string vtk_prefix;                                   // "" = no VTK output
+  std::int64_t every = 1;
+  std::int64_t check_every = 1;
+  bool quiet = false;
+};
+
+inline std::string usage_line(const std::string& model) {
+  return "usage: " + model +
+         " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
+         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--quiet] [--help]";
+}
+
+template <class Model>
+std::vector<std::string> set_names(const Model& model) {
+  std::vector<std::string> names;
+  model.for_each_set([&](const char* name, const auto&) { names.emplace_back(name); });
+  return names;
+}
+
+// "out.csv" for set P -> "out_P.csv", when a model has several sets.
+inline std::string path_for_set(const std::string& path, const std::string& set) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "_" + set + p.extension().string())).string();
+}
+
+template <class Int>
+Int parse_count(const std::string& option, const std::string& text) {
+  Int value{};
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc() || stop != end || text[0] == '-')
+    throw UsageError(option + " expects a non-negative integer, got '" + text + "'");
+  return value;
+}
+
+inline void require_directory_of(const std::string& option, const std::string& path) {
+  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+  if (!directory.empty() && !std::filesystem::is_directory(directory))
+    throw UsageError(option + " " + path + ": directory '" + directory.string() +
+                     "' does not exist");
+}
+
+template <class Model>
+DriverOptions parse_driver_options(Model& model, const std::vector<std::string>& args) {
+  const std::vector<std::string> sets = set_names(model);
+  DriverOptions options;
+  for (std::size_t a = 0; a < args.size(); ++a) {
+    std::string option = args[a];
+    std::optional<std::string> attached;  // the value of "--option=value"
+    if (const auto equals = option.find('=');
+        option.rfind("--", 0) == 0 && equals != std::string::npos) {
+      attached = option.substr(equals + 1);
+      option.resize(equals);
+    }
+    // A following "--x" is taken for a forgotten value, not as the value.
+    const auto value = [&]() -> std::string {
+      if (attached) {
+        if (attached->empty()) throw UsageError("option " + option + " needs a value");
+        return *attached;
+      }
+      if (a + 1 == args.size() || args[a + 1].empty() || args[a + 1].rfind("--", 0) == 0)
+        throw UsageError("option " + option + " needs a value");
+      return args[++a];
+    };
+
+    if (option == "--quiet") {
+      if (attached) throw UsageError("option --quiet takes no value");
+      options.quiet = true;
+    } else if (option == "--steps") {
+      options.steps = parse_count<std::int64_t>(option, value());
+    } else if (option == "--seed") {
+      options.seed = parse_count<std::uint64_t>(option, value());
+    } else if (option == "--every") {
+      options.every = parse_count<std::int64_t>(option, value());
+      if (options.every == 0)
+        throw UsageError("--every must be at least 1 (step 0 is always written)");
+    } else if (option == "--check-every") {
+      options.check_every = parse_count<std::int64_t>(option, value());
+    } else if (option == "--set") {
+      const std::string assignment = value();
+      const auto equals = assignment.find('=');
+      if (equals == std::string::npos || equals == 0)
+        throw UsageError("--set expects NAME=VALUE, got '" + assignment + "'");
+      model.set_param(assignment.substr(0, equals), assignment.substr(equals + 1));
+    } else if (option == "--input") {
+      const std::string spec = value();
+      const auto equals = spec.find('=');
+      std::string set = sets.size() == 1 ? sets[0] : "", file = spec;
+      if (equals != std::string::npos) {
+        set = spec.substr(0, equals);
+        file = spec.substr(equals + 1);
+        if (std::find(sets.begin(), sets.end(), set) == sets.end())
+          throw UsageError("--input " + spec + ": the model has no set '" + set +
+                           "' (sets: " + join(sets) + ")");
+      } else if (sets.size() != 1) {
+        throw UsageError("--input " + spec + ": say which set the file is for, as --input SET=" +
+                         spec + " (sets: " + join(sets) + ")");
+      }
+      if (file.empty()) throw UsageError("--input " + spec + ": no file name");
+      for (const auto& [other, ignored] : options.inputs)
+        if (other == set) throw UsageError("--input given twice for set '" + set + "'");
+      options.inputs.emplace_back(set, file);
+    } else if (option == "--output") {
+      options.output = value();
+      require_directory_of(option, options.output);
+    } else if (option == "--vtk") {
+      options.vtk_prefix = value();
+      require_directory_of(option, options.vtk_prefix);
+    } else if (option.rfind("-", 0) == 0) {
+      throw UsageError("unknown option '" + args[a] + "'");
+    } else {
+      throw UsageError("unexpected argument '" + args[a] + "' (options start with --)");
+    }
+  }
+  return options;
+}
+
+template <class Model>
+void print_help(std::ostream& out, const Model& model) {
+  const std::string name = Model::model_name;
+  std::ostringstream text;
+  text << usage_line(name) << "\n\n"
+       << "Runs the partc model " << name << " (particle sets: " << join(set_names(model))
+       << ").\n\n"
+       << "  --steps K            number of steps (default 10)\n"
+       << "  --seed S             random seed (default 0)\n"
+       << "  --set NAME=VALUE     set a parameter; repeatable\n"
+       << "  --input FILE.csv     start from a file instead of init; with several sets\n"
+       << "                       --input SET=FILE.csv, once per set (the others start empty)\n"
+       << "  --output FILE.csv    write the final state (FILE_SET.csv with several sets)\n"
+       << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
+       << "  --every M            VTK every M steps (default 1; step 0 is always written)\n"
+       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n"
+       << "  --quiet              no summary at the end\n"
+       << "  --help               this text\n\n"
+       << "Parameters:\n";
+  const std::vector<ParamInfo> params = Model::param_info();
+  if (params.empty()) text << "  (none)\n";
+  for (const ParamInfo& param : params)
+    text << "  " << std::left << std::setw(18) << param.name << " " << std::setw(6) << param.type
+         << " default " << param.default_value << "\n";
+  text << "\nExit status: 0 success, 1 bad input file or I/O failure, 2 bad arguments,\n"
+       << "3 numerical blow-up (NaN or Inf in a variable).\n";
+  out << text.str();
+}
+
+// Per set: particle count, then min/mean/max of each variable (of |v| for a vec).
+template <class Model>
+void print_summary(std::ostream& out, const Model& model, const DriverOptions& options,
+                   double seconds) {
+  std::ostringstream text;
+  text << Model::model_name << ": " << model.step_count() << " steps, seed " << options.seed << ", "
+       << seconds << " s\n";
+  model.for_each_set([&](const char* set_name, const auto& set) {
+    text << set_name << ": " << set.size() << (set.size() == 1 ? " particle\n" : " particles\n");
+    if (set.empty()) return;
+    text << "  " << std::left << std::setw(12) << "variable" << std::right << std::setw(14) << "min"
+         << std::setw(14) << "mean" << std::setw(14) << "max"
+         << "\n";
+    set.for_each_variable([&](const char* name, const auto& values) {
+      using S = typename std::decay_t<decltype(values)>::value_type;
+      double low = std::numeric_limits<double>::infinity(), high = -low, sum = 0;
+      for (const S& value : values) {
+        double x;
+        if constexpr (StorageTraits<S>::is_vec)
+          x = norm(value);
+        else
+          x = static_cast<double>(value);
+        low = std::min(low, x);
+        high = std::max(high, x);
+        sum += x;
+      }
+      const std::string label = StorageTraits<S>::is_vec ? "|" + std::string(name) + "|" : name;
+      text << "  " << std::left << std::setw(12) << label << std::right << std::setw(14) << low
+           << std::setw(14) << sum / static_cast<double>(values.size()) << std::setw(14) << high
+           << "\n";
+    });
+  });
+  out << text.str();
+}
+
+template <class Model>
+void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
+  const auto start = std::chrono::steady_clock::now();
+  model.set_seed(options.seed);
+  if (options.inputs.empty()) {
+    model.init();
+  } else {
+    std::map<std::string, CsvTable> tables;
+    for (const auto& [set, file] : options.inputs) tables.emplace(set, read_csv(file));
+    model.load(tables);
+  }
+
+  const std::vector<std::string> sets = set_names(model);
+  std::map<std::string, VtkSeries> series;
+  if (!options.vtk_prefix.empty())
+    for (const auto& set : sets) series.emplace(set, options.vtk_prefix + "_" + set);
+  const auto due = [](std::int64_t step, std::int64_t every) {
+    return every > 0 && step % every == 0;
+  };
+
+  // Step 0 (the state after init or load) is checked and written like any other.
+  bool checked = false;
+  for (std::int64_t k = 0; k <= options.steps; ++k) {
+    if (k > 0) model.step();
+    const std::int64_t step = model.step_count();
+    checked = due(step, options.check_every);
+    if (checked) model.check_finite();
+    if (!series.empty() && due(step, options.every))
+      model.for_each_set([&](const char* name, const auto& set) {
+        series.at(name).write(set, step, static_cast<double>(step));
+      });
+  }
+  if (options.check_every > 0 && !checked) model.check_finite();
+
+  if (!options.output.empty())
+    model.for_each_set([&](const char* name, const auto& set) {
+      write_csv(sets.size() > 1 ? path_for_set(options.output, name) : options.output, set);
+    });
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  if (!options.quiet) print_summary(out, model, options, elapsed.count());
+}
+
+}  // namespace detail
+
+// The whole program; out receives --help and the summary, err the errors.
+template <class Model>
+int run_driver(int argc, char** argv, std::ostream& out, std::ostream& err) {
+  const std::string name = Model::model_name;
+  std::vector<std::string> args;
+  for (int a = 1; a < argc; ++a) args.emplace_back(argv[a]);
+  try {
+    Model model;
+    if (std::find(args.begin(), args.end(), "--help") != args.end()) {
+      detail::print_help(out, model);
+      return 0;
+    }
+    const detail::DriverOptions options = detail::parse_driver_options(model, args);
+    detail::run_model(model, options, out);
+    return 0;
+  } catch (const UsageError& e) {
+    err << name << ": error: " << e.what() << "\n" << detail::usage_line(name) << "\n";
+    return 2;
+  } catch (const InputError& e) {
+    err << e.what() << "\n";  // already "file:line:col: error: ..."
+    return 1;
+  } catch (const NumericalError& e) {
+    err << name << ": error: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    err << name << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+template <class Model>
+int run_driver(int argc, char** argv) {
+  return run_driver<Model>(argc, argv, std::cout, std::cerr);
+}
+
+}  // namespace partc

@@ -1,0 +1,52 @@
+// partc/finite.hpp: the NaN/Inf check a model runs between steps, and the
+// storage-type facts that the checker and the writers (csv.hpp, vtk.hpp) share.
+//
+// check_finite(set, "P", step) throws NumericalError for the first non-finite
+// value of any floating variable: variables in for_each_variable order
+// (positions "p" first), and within a variable, particles in storage order,
+// which need not be id order. Integer and bool variables cannot hold NaN and
+// are skipped.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "partc/errors.hpp"
+#include "partc/vec.hpp"
+
+namespace partc {
+
+// What one particle's value of a variable looks like once flattened:
+// scalars (double, std::int64_t, std::uint8_t) are one component of their own
+// type, Vec<D> is D doubles.
+template <class S>
+struct StorageTraits {
+  static constexpr bool is_vec = false;
+  static constexpr int components = 1;
+  static const S& component(const S& value, int) { return value; }
+};
+
+template <int D>
+struct StorageTraits<Vec<D>> {
+  static constexpr bool is_vec = true;
+  static constexpr int components = D;
+  static double component(const Vec<D>& value, int k) { return value[k]; }
+};
+
+template <class Set>
+void check_finite(const Set& set, const char* set_name, std::int64_t step) {
+  set.for_each_variable([&](const char* name, const auto& values) {
+    using S = typename std::decay_t<decltype(values)>::value_type;
+    if constexpr (std::is_floating_point_v<S> || StorageTraits<S>::is_vec) {
+      for (std::size_t i = 0; i < values.size(); ++i)
+        for (int k = 0; k < StorageTraits<S>::components; ++k) {
+          const double x = StorageTraits<S>::component(values[i], k);
+          if (!std::isfinite(x)) throw NumericalError(set_name, name, set.ids()[i], step, x);
+        }
+    }
+  });
+}
+
+}  // namespace partc

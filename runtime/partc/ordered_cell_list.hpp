@@ -1,0 +1,70 @@
+// partc/ordered_cell_list.hpp: OrderedCellList<D>, a cell list whose points are
+// sorted by cell (stable counting sort), so a cell - and a run of cells along
+// the last dimension - is one contiguous range of points: the query's inner
+// loop is a linear scan.
+//
+// Query contract: as BruteForce (brute_force.hpp); geometry and periodic
+// handling: cell_grid.hpp. Any radius works (a periodic dimension with < 3 cells
+// uses exact mode).
+//
+// Surprises:
+// - j in f(j, dx) indexes the SORTED order, not the caller's: order() maps it
+//   back (sorted[k] = points[order()[k]]); a caller wanting j to index its
+//   particle arrays permutes them with order() right after build
+//   (ParticleSet::permute(order())).
+// - Within a cell the original relative order is kept, so results are
+//   deterministic; build copies the points (wrapped into the periodic box).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "partc/cell_grid.hpp"
+#include "partc/domain.hpp"
+#include "partc/vec.hpp"
+
+namespace partc {
+
+template <int D>
+class OrderedCellList {
+ public:
+  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
+    const std::size_t n = points.size();
+    grid_ = CellGrid<D>(domain, radius, n);
+    cell_of_point_.resize(n);
+    start_.assign(grid_.cell_count() + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      cell_of_point_[i] = grid_.cell_of(domain.wrap(points[i]));
+      ++start_[cell_of_point_[i]];
+    }
+    // Inclusive prefix sums make start_[c] the end of cell c (and start_.back() = n);
+    // filling backwards keeps the original order and moves it down to the start of cell c.
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    order_.resize(n);
+    for (std::size_t i = n; i-- > 0;) order_[--start_[cell_of_point_[i]]] = i;
+    points_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) points_[k] = domain.wrap(points[order_[k]]);
+  }
+
+  template <class F>
+  void for_each_near(const Vec<D>& q, F&& f) const {
+    grid_.for_each_run(q, [&](std::size_t first, std::size_t last, const Vec<D>& qs, auto exact) {
+      const std::size_t end = start_[last + 1];
+      for (std::size_t j = start_[first]; j < end; ++j)
+        grid_.report_if_near(exact, j, points_[j], qs, f);
+    });
+  }
+
+  // The permutation of the last build: sorted[k] = points[order()[k]].
+  const std::vector<std::size_t>& order() const { return order_; }
+  std::size_t cell_count() const { return grid_.cell_count(); }
+
+ private:
+  CellGrid<D> grid_;
+  std::vector<Vec<D>> points_;               // wrapped, sorted by cell
+  std::vector<std::size_t> start_;           // cell c holds points start_[c] .. start_[c+1]-1
+  std::vector<std::size_t> order_;
+  std::vector<std::size_t> cell_of_point_;   // build scratch, kept to reuse its memory
+};
+
+}  // namespace partc
