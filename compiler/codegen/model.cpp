@@ -282,7 +282,8 @@ class ModelEmitter {
 
   void set_param() {
     line("// Sets a parameter from text, as the driver's --set does.");
-    line("void set_param(const std::string& name, const std::string& value) {");
+    linef("void set_param(const std::string& name, const std::string&{}) {{",
+          m_.params.empty() ? "" : " value");
     std::vector<std::string> names;
     for (const Param& p : m_.params) {
       names.push_back(p.name);
