@@ -517,6 +517,11 @@ class ModelEmitter {
       names.accumulators[acc->id] =
           locals.fresh(std::string(reduction_name(acc->reduction)) + "_" + names.labels[acc->label]);
     const std::string count = locals.fresh("n");
+    // A fused loop has one index: every label it serves is named after the first.
+    const std::vector<Loop> loops = fuse_loops(uses.accumulations, st);
+    for (const Loop& l : loops)
+      for (const Accumulate* acc : l.members)
+        names.labels[acc->label] = names.labels[l.members.front()->label];
     const std::string i = names.labels[0];
 
     // The comment: the .part line and the decisions behind the kernel.
@@ -533,8 +538,10 @@ class ModelEmitter {
     std::map<int, std::vector<std::string>> radii;  // set -> radius expressions
     for (const Accumulate* acc : uses.accumulations) {
       const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
-      if (fact.kind == SearchFact::Kind::Neighbours)
-        radii[st.labels[acc->label].set].push_back(expression(fact.radius, names));
+      if (fact.kind != SearchFact::Kind::Neighbours) continue;
+      auto& list = radii[st.labels[acc->label].set];
+      const std::string radius = expression(fact.radius, names);
+      if (std::find(list.begin(), list.end(), radius) == list.end()) list.push_back(radius);
     }
     for (const auto& [s, list] : radii) refresh_search(s, list, locals.fresh("radius"));
 
@@ -549,7 +556,7 @@ class ModelEmitter {
       linef("{}.resize({});", buffer, count);
     }
     linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", i, count);
-    for (const Accumulate* acc : uses.accumulations) accumulation(*acc, st, names);
+    for (const Loop& l : loops) loop(l, st, names);
     assignment(st, names, buffer);
     line("}");
     const std::string target_array = array_name(home, st.var);
@@ -585,62 +592,94 @@ class ModelEmitter {
     line("}");
   }
 
-  void accumulation(const Accumulate& acc, const Statement& st, const ExpressionNames& names) {
-    const std::string& acc_name = names.accumulators.at(acc.id);
-    const std::string j = names.labels[acc.label];
-    const std::string i = names.labels[0];
-    const int j_set = st.labels[acc.label].set;
-    const SearchFact& fact = facts_.neighbourhoods.at(acc.id);
-    UsesDx dx;
-    dx.visit(acc.condition);
-    dx.visit(acc.body);
-    ReadsLabel reads_j(acc.label);
-    reads_j.visit(acc.condition);
-    reads_j.visit(acc.body);
+  // Accumulations of one statement over the same set, found the same way
+  // (the same search, or the same dense loop), share one pass: SPH's
+  // density and its normalisation cost one neighbour walk, not two.
+  struct Loop {
+    int set;
+    SearchFact::Kind kind;
+    std::vector<const Accumulate*> members;
+  };
 
-    // The accumulator and its identity element.
+  std::vector<Loop> fuse_loops(const std::vector<const Accumulate*>& accumulations,
+                               const Statement& st) const {
+    std::vector<Loop> loops;
+    for (const Accumulate* acc : accumulations) {
+      const int set = st.labels[acc->label].set;
+      const SearchFact::Kind kind = facts_.neighbourhoods.at(acc->id).kind;
+      auto same = std::find_if(loops.begin(), loops.end(),
+                               [&](const Loop& l) { return l.set == set && l.kind == kind; });
+      if (same == loops.end())
+        loops.push_back({set, kind, {acc}});
+      else
+        same->members.push_back(acc);
+    }
+    return loops;
+  }
+
+  std::string identity(const Accumulate& acc) const {
     switch (acc.reduction) {
       case Reduction::Sum:
-        linef("{} {} = {};", cpp_type(acc.type), acc_name,
-              acc.type == Type::Vec ? "Vec::zero()" : emit_literal(acc.type, 0));
-        break;
-      case Reduction::Count: linef("std::int64_t {} = 0;", acc_name); break;
+        return acc.type == Type::Vec ? "Vec::zero()" : emit_literal(acc.type, 0);
+      case Reduction::Count: return "0";
+      case Reduction::Min:
+        return acc.type == Type::Real ? "std::numeric_limits<double>::infinity()"
+                                      : "std::numeric_limits<std::int64_t>::max()";
+      case Reduction::Max:
+        return acc.type == Type::Real ? "-std::numeric_limits<double>::infinity()"
+                                      : "std::numeric_limits<std::int64_t>::min()";
+    }
+    internal_error("identity: unknown reduction");
+  }
+
+  std::string update(const Accumulate& acc, const ExpressionNames& names) const {
+    const std::string& name = names.accumulators.at(acc.id);
+    std::string step;
+    switch (acc.reduction) {
+      case Reduction::Sum: step = name + " += " + expression(acc.body, names) + ";"; break;
+      case Reduction::Count: step = "++" + name + ";"; break;
       case Reduction::Min:
       case Reduction::Max:
-        linef("{} {} = {}std::numeric_limits<{}>::{}();", cpp_type(acc.type), acc_name,
-              acc.reduction == Reduction::Max && acc.type == Type::Real ? "-" : "", cpp_type(acc.type),
-              acc.type == Type::Real ? "infinity" : acc.reduction == Reduction::Min ? "max" : "min");
+        step = fmt::format("{0} = std::{1}<{2}>({0}, {3});", name, reduction_name(acc.reduction),
+                           cpp_type(acc.type), expression(acc.body, names));
         break;
     }
+    return acc.condition ? "if (" + expression(acc.condition, names) + ") " + step : step;
+  }
 
+  void loop(const Loop& l, const Statement& st, const ExpressionNames& names) {
+    UsesDx dx;
+    bool reads_j = false;
+    for (const Accumulate* acc : l.members) {
+      linef("{} {} = {};", acc->reduction == Reduction::Count ? "std::int64_t" : cpp_type(acc->type),
+            names.accumulators.at(acc->id), identity(*acc));
+      dx.visit(acc->condition);
+      dx.visit(acc->body);
+      ReadsLabel reads(acc->label);
+      reads.visit(acc->condition);
+      reads.visit(acc->body);
+      reads_j |= reads.found;
+    }
     ExpressionNames inner = names;
     inner.dx_norm = dx.norm ? "dx_norm" : "";
     std::string body;
     if (dx.norm) body += "const double dx_norm = partc::norm(dx);\n";
-    std::string update;
-    switch (acc.reduction) {
-      case Reduction::Sum: update = acc_name + " += " + expression(acc.body, inner) + ";"; break;
-      case Reduction::Count: update = "++" + acc_name + ";"; break;
-      case Reduction::Min:
-      case Reduction::Max:
-        update = fmt::format("{0} = std::{1}<{2}>({0}, {3});", acc_name, reduction_name(acc.reduction),
-                             cpp_type(acc.type), expression(acc.body, inner));
-        break;
-    }
-    body += acc.condition ? "if (" + expression(acc.condition, inner) + ") " + update : update;
+    for (const Accumulate* acc : l.members) body += update(*acc, inner) + "\n";
 
+    const std::string j = names.labels[l.members.front()->label];
+    const std::string i = names.labels[0];
     const std::string home_p = names.array(st.set, kPosition);
-    if (fact.kind == SearchFact::Kind::Neighbours) {
-      linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_member_[j_set], home_p,
-            i, reads_j.found ? " " + j : "", dx.dx ? " dx" : "");
-      line(body);
+    if (l.kind == SearchFact::Kind::Neighbours) {
+      linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_member_[l.set],
+            home_p, i, reads_j ? " " + j : "", dx.dx ? " dx" : "");
+      out_ += body;
       line("});");
     } else {
-      linef("for (std::size_t {0} = 0; {0} < {1}.size(); ++{0}) {{", j, set_member_[j_set]);
+      linef("for (std::size_t {0} = 0; {0} < {1}.size(); ++{0}) {{", j, set_member_[l.set]);
       if (dx.dx)
-        linef("const Vec dx = domain_.minimum_image({}[{}] - {}[{}]);", names.array(j_set, kPosition), j,
-              home_p, i);
-      line(body);
+        linef("const Vec dx = domain_.minimum_image({}[{}] - {}[{}]);", names.array(l.set, kPosition),
+              j, home_p, i);
+      out_ += body;
       line("}");
     }
   }
