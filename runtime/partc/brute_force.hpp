@@ -6,11 +6,15 @@
 // f(j, dx) exactly once for each point j with |dx|^2 <= radius^2 * (1 + 1e-12),
 // dx = domain.minimum_image(points[j] - q); j itself is included when q == points[j].
 //
-// Surprises: build copies the points (wrapped into the periodic box), so the
-// caller's vector may change afterwards; queries see the state at build time.
+// Surprises: build copies the points, wrapped into the periodic box, so the
+// caller's vector may change afterwards. With points and query wrapped, every
+// periodic component of points[j] - q lies in (-L, L), so the pair loop does
+// minimum_image's single branch-free shift inline with per-dimension constants
+// (non-periodic: never shifted) and needs no remainder fallback.
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "partc/domain.hpp"
@@ -25,8 +29,11 @@ class BruteForce {
     check_search_arguments(domain, radius);
     domain_ = domain;
     squared_reach_ = radius * radius * (1 + 1e-12);
-    // Wrapped points and queries keep every displacement within one box length,
-    // where minimum_image takes its cheap path.
+    for (int k = 0; k < D; ++k) {
+      // Non-periodic: a shift of 0 * 0 when |d| > infinity, i.e. never (and no inf * 0).
+      length_[k] = domain.periodic[k] ? domain.hi[k] - domain.lo[k] : 0.0;
+      half_[k] = domain.periodic[k] ? 0.5 * length_[k] : std::numeric_limits<double>::infinity();
+    }
     points_.resize(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) points_[j] = domain.wrap(points[j]);
   }
@@ -35,13 +42,18 @@ class BruteForce {
   void for_each_near(const Vec<D>& q, F&& f) const {
     const Vec<D> qw = domain_.wrap(q);
     for (std::size_t j = 0; j < points_.size(); ++j) {
-      const Vec<D> dx = domain_.minimum_image(points_[j] - qw);
+      Vec<D> dx = points_[j] - qw;
+      for (int k = 0; k < D; ++k) {  // as in Domain::minimum_image: setcc, not a branch
+        const int shift = static_cast<int>(dx[k] > half_[k]) - static_cast<int>(dx[k] < -half_[k]);
+        dx[k] -= length_[k] * shift;
+      }
       if (squared_norm(dx) <= squared_reach_) f(j, dx);
     }
   }
 
  private:
   Domain<D> domain_{};
+  Vec<D> length_{}, half_{};
   double squared_reach_ = 0.0;
   std::vector<Vec<D>> points_;
 };

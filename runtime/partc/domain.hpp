@@ -4,7 +4,8 @@
 // Surprises:
 // - minimum_image maps periodic components into the CLOSED interval [-L/2, L/2]
 //   (a displacement of exactly L/2 stays +L/2); it is exact for any magnitude,
-//   many box lengths included (IEEE remainder), with a cheap path for |d| <= 2L.
+//   many box lengths included (IEEE remainder), with a branch-free path for
+//   |d| <= 1.5L, which covers the difference of any two wrapped points.
 // - wrap maps periodic components into the HALF-OPEN [lo, hi): x - lo + L can
 //   round up to exactly L, so a result that would land on hi is returned as lo
 //   (the same point of the torus).
@@ -35,13 +36,13 @@ struct Domain {
       if (!periodic[k]) continue;
       const double L = hi[k] - lo[k];
       const double half = 0.5 * L;
-      const double x = d[k];
       // One shift covers every difference of two wrapped points and is exact
-      // (Sterbenz's lemma) for L/2 < |x| <= 2L. It is written as arithmetic, not
-      // a branch: in a kernel about half of the pairs need it, unpredictably.
-      double image = x - L * static_cast<double>(x > half) + L * static_cast<double>(x < -half);
-      if (!(std::abs(image) <= half)) image = std::remainder(x, L);  // |x| > 1.5L or NaN: rare
-      d[k] = image;
+      // (Sterbenz's lemma) for L/2 < |d| <= 2L. The shift count is an int so that
+      // compilers emit setcc rather than a branch: in a kernel about half of the
+      // pairs need a shift, unpredictably. Longer d (or NaN): exact IEEE remainder.
+      const int shift = static_cast<int>(d[k] > half) - static_cast<int>(d[k] < -half);
+      const double image = d[k] - L * shift;
+      d[k] = std::abs(image) <= half ? image : std::remainder(d[k], L);
     }
     return d;
   }

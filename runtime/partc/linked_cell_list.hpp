@@ -43,8 +43,8 @@ class LinkedCellList {
   void for_each_near(const Vec<D>& q, F&& f) const {
     grid_.for_each_run(q, [&](std::size_t first, std::size_t last, const Vec<D>& qs, auto exact) {
       for (std::size_t cell = first; cell <= last; ++cell)
-        for (std::size_t j = head_[cell]; j != none; j = next_[j])
-          grid_.report_if_near(exact, j, points_[j], qs, f);
+        grid_.scan(exact, head_[cell], none, [this](std::size_t j) { return next_[j]; }, points_,
+                   qs, f);
     });
   }
 

@@ -49,9 +49,8 @@ class OrderedCellList {
   template <class F>
   void for_each_near(const Vec<D>& q, F&& f) const {
     grid_.for_each_run(q, [&](std::size_t first, std::size_t last, const Vec<D>& qs, auto exact) {
-      const std::size_t end = start_[last + 1];
-      for (std::size_t j = start_[first]; j < end; ++j)
-        grid_.report_if_near(exact, j, points_[j], qs, f);
+      grid_.scan(exact, start_[first], start_[last + 1], [](std::size_t j) { return j + 1; },
+                 points_, qs, f);
     });
   }
 

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 
 namespace partc {
 
@@ -67,8 +68,8 @@ bool operator!=(const Vec<D>& a, const Vec<D>& b) { return !(a == b); }
 
 template <int D>
 double dot(const Vec<D>& a, const Vec<D>& b) {
-  double s = 0.0;
-  for (int k = 0; k < D; ++k) s += a[k] * b[k];
+  double s = a[0] * b[0];  // not 0.0 + ...: an add the compiler may not drop (-0.0)
+  for (int k = 1; k < D; ++k) s += a[k] * b[k];
   return s;
 }
 template <int D>

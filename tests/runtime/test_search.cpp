@@ -25,14 +25,14 @@
 using partc::Domain;
 using partc::Vec;
 
-namespace {
-
-constexpr double eps = std::numeric_limits<double>::epsilon();
-
 struct P_origin {  // the index a particle had before the facade reordered the set
   using type = std::int64_t;
   static constexpr const char* name = "origin";
 };
+
+namespace {
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
 
 template <int D>
 struct Case {
