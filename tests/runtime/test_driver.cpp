@@ -3,6 +3,8 @@
 // its message, data files round-trip exactly, VTK series appear, and a NaN
 // gives exit 3 with no --output file.
 #include <catch2/catch.hpp>
+
+#include "sample_set.hpp"
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -28,23 +30,6 @@ fs::path scratch_directory();  // test_io.cpp: one fresh directory per test run
 
 namespace {
 
-struct Toy_v {
-  using type = Vec<2>;
-  static constexpr const char* name = "v";
-};
-struct Toy_e {
-  using type = double;
-  static constexpr const char* name = "e";
-};
-struct Toy_hits {
-  using type = std::int64_t;
-  static constexpr const char* name = "hits";
-};
-struct Toy_moving {
-  using type = bool;
-  static constexpr const char* name = "moving";
-};
-using ToySet = partc::ParticleSet<2, Toy_v, Toy_e, Toy_hits, Toy_moving>;
 
 // N particles drawn uniformly in the unit square, pulled towards its centre
 // with strength c; e accumulates kinetic energy, so a NaN in it stays.
@@ -84,14 +69,14 @@ class Toy {
 
   void step() {
     ++step_;
-    auto& v = p_.get<Toy_v>();
-    auto& e = p_.get<Toy_e>();
+    auto& v = p_.get<sample::P_v>();
+    auto& e = p_.get<sample::P_e>();
     for (std::size_t i = 0; i < p_.size(); ++i) {
       v[i] += c_ * (Vec<2>::filled(0.5) - p_.positions()[i]);
       p_.positions()[i] += v[i];
       e[i] += 0.5 * squared_norm(v[i]);
-      p_.get<Toy_hits>()[i] += 1;
-      p_.get<Toy_moving>()[i] = norm(v[i]) > 0.01;
+      p_.get<sample::P_hits>()[i] += 1;
+      p_.get<sample::P_moving>()[i] = norm(v[i]) > 0.01;
     }
     if (step_ == nan_at_ && !p_.empty()) e.back() = std::nan("");
   }
@@ -111,7 +96,7 @@ class Toy {
   double c_ = 0.25;
   std::int64_t nan_at_ = 0;
   std::int64_t step_ = 0;
-  ToySet p_;
+  sample::Set p_;
 };
 
 // Toy plus a second set Q that only a file fills: the multi-set paths.
@@ -137,7 +122,7 @@ class TwoSets : public Toy {
   }
 
  private:
-  ToySet q_;
+  sample::Set q_;
 };
 
 struct Run {

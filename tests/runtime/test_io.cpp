@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+
+#include "sample_set.hpp"
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -44,23 +46,12 @@ fs::path scratch_directory() {
 
 namespace {
 
-struct P_v {
-  using type = Vec<2>;
-  static constexpr const char* name = "v";
-};
-struct P_e {
-  using type = double;
-  static constexpr const char* name = "e";
-};
-struct P_hits {
-  using type = std::int64_t;
-  static constexpr const char* name = "hits";
-};
-struct P_moving {
-  using type = bool;
-  static constexpr const char* name = "moving";
-};
-using Set = partc::ParticleSet<2, P_v, P_e, P_hits, P_moving>;
+using sample::P_e;
+using sample::P_hits;
+using sample::P_moving;
+using sample::P_v;
+using sample::Set;
+
 
 std::string file_path(const std::string& name) { return (scratch_directory() / name).string(); }
 

@@ -2,6 +2,8 @@
 // variable visiting order, and the uint8 storage of bool.
 #include <catch2/catch.hpp>
 
+#include "sample_set.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
@@ -17,24 +19,13 @@ using partc::Vec;
 
 namespace {
 
-struct P_v {
-  using type = Vec<2>;
-  static constexpr const char* name = "v";
-};
-struct P_m {
-  using type = double;
-  static constexpr const char* name = "m";
-};
-struct P_n {
-  using type = std::int64_t;
-  static constexpr const char* name = "n";
-};
-struct P_flag {
-  using type = bool;
-  static constexpr const char* name = "flag";
-};
+using sample::P_e;
+using sample::P_hits;
+using sample::P_moving;
+using sample::P_v;
+using sample::Set;
 
-using Set = partc::ParticleSet<2, P_v, P_m, P_n, P_flag>;
+
 
 // Every array of particle i holds values derived from its id, so any
 // inconsistency between arrays after erase/permute shows up.
@@ -43,9 +34,9 @@ void fill_from_ids(Set& set) {
     const auto id = static_cast<double>(set.ids()[i]);
     set.positions()[i] = Vec<2>{{id, -id}};
     set.get<P_v>()[i] = Vec<2>{{10 * id, 0.5}};
-    set.get<P_m>()[i] = 100 * id;
-    set.get<P_n>()[i] = 1000 * set.ids()[i];
-    set.get<P_flag>()[i] = static_cast<std::uint8_t>(set.ids()[i] % 2);
+    set.get<P_e>()[i] = 100 * id;
+    set.get<P_hits>()[i] = 1000 * set.ids()[i];
+    set.get<P_moving>()[i] = static_cast<std::uint8_t>(set.ids()[i] % 2);
   }
 }
 
@@ -55,18 +46,18 @@ void check_consistent(const Set& set) {
   REQUIRE(set.ids().size() == n);
   REQUIRE(set.alive().size() == n);
   REQUIRE(set.get<P_v>().size() == n);
-  REQUIRE(set.get<P_m>().size() == n);
-  REQUIRE(set.get<P_n>().size() == n);
-  REQUIRE(set.get<P_flag>().size() == n);
+  REQUIRE(set.get<P_e>().size() == n);
+  REQUIRE(set.get<P_hits>().size() == n);
+  REQUIRE(set.get<P_moving>().size() == n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::int64_t id = set.ids()[i];
     const auto x = static_cast<double>(id);
     INFO("index " << i << ", id " << id);
     CHECK(set.positions()[i] == Vec<2>{{x, -x}});
     CHECK(set.get<P_v>()[i] == Vec<2>{{10 * x, 0.5}});
-    CHECK(set.get<P_m>()[i] == 100 * x);
-    CHECK(set.get<P_n>()[i] == 1000 * id);
-    CHECK(set.get<P_flag>()[i] == id % 2);
+    CHECK(set.get<P_e>()[i] == 100 * x);
+    CHECK(set.get<P_hits>()[i] == 1000 * id);
+    CHECK(set.get<P_moving>()[i] == id % 2);
   }
 }
 
@@ -83,15 +74,15 @@ TEST_CASE("bool variables are stored as uint8", "[particle_set]") {
   static_assert(std::is_same_v<partc::storage_t<bool>, std::uint8_t>);
   static_assert(std::is_same_v<partc::storage_t<double>, double>);
   static_assert(std::is_same_v<partc::storage_t<Vec<3>>, Vec<3>>);
-  static_assert(std::is_same_v<decltype(std::declval<Set&>().get<P_flag>()),
+  static_assert(std::is_same_v<decltype(std::declval<Set&>().get<P_moving>()),
                                std::vector<std::uint8_t>&>);
-  static_assert(std::is_same_v<decltype(std::declval<const Set&>().get<P_n>()),
+  static_assert(std::is_same_v<decltype(std::declval<const Set&>().get<P_hits>()),
                                const std::vector<std::int64_t>&>);
   static_assert(Set::dim == 2);
   Set set;
   set.push_back(Vec<2>{});
-  set.get<P_flag>()[0] = 1;
-  const std::uint8_t* data = set.get<P_flag>().data();  // contiguous storage
+  set.get<P_moving>()[0] = 1;
+  const std::uint8_t* data = set.get<P_moving>().data();  // contiguous storage
   CHECK(data[0] == 1);
 }
 
@@ -111,9 +102,9 @@ TEST_CASE("push_back assigns increasing ids and zero variables", "[particle_set]
   CHECK(set.ids() == std::vector<std::int64_t>{0, 1, 2, 3, 4});
   CHECK(set.alive() == std::vector<std::uint8_t>(5, 1));
   CHECK(set.get<P_v>() == std::vector<Vec<2>>(5, Vec<2>{{0.0, 0.0}}));
-  CHECK(set.get<P_m>() == std::vector<double>(5, 0.0));
-  CHECK(set.get<P_n>() == std::vector<std::int64_t>(5, 0));
-  CHECK(set.get<P_flag>() == std::vector<std::uint8_t>(5, 0));
+  CHECK(set.get<P_e>() == std::vector<double>(5, 0.0));
+  CHECK(set.get<P_hits>() == std::vector<std::int64_t>(5, 0));
+  CHECK(set.get<P_moving>() == std::vector<std::uint8_t>(5, 0));
   CHECK(set.next_id() == 5);
 }
 
@@ -125,7 +116,7 @@ TEST_CASE("ids are never reused", "[particle_set]") {
   CHECK(set.ids().back() == 3);
   set.clear();
   CHECK(set.empty());
-  CHECK(set.get<P_m>().empty());
+  CHECK(set.get<P_e>().empty());
   CHECK(set.next_id() == 4);
   set.push_back(Vec<2>{});
   CHECK(set.ids() == std::vector<std::int64_t>{4});
@@ -139,7 +130,7 @@ TEST_CASE("push_back_with_id and set_next_id", "[particle_set]") {
   CHECK(set.next_id() == 11);
   CHECK(set.ids() == std::vector<std::int64_t>{10, 3});
   CHECK(set.alive() == std::vector<std::uint8_t>{1, 1});
-  CHECK(set.get<P_m>() == std::vector<double>{0.0, 0.0});
+  CHECK(set.get<P_e>() == std::vector<double>{0.0, 0.0});
   set.push_back(Vec<2>{});
   CHECK(set.ids().back() == 11);
   set.set_next_id(100);
@@ -200,7 +191,7 @@ TEST_CASE("for_each_variable visits p, then the variables in declaration order",
     names.emplace_back(name);
     sizes.push_back(values.size());
   });
-  CHECK(names == std::vector<std::string>{"p", "v", "m", "n", "flag"});
+  CHECK(names == std::vector<std::string>{"p", "v", "e", "hits", "moving"});
   CHECK(sizes == std::vector<std::size_t>(5, 3));
 
   names.clear();
@@ -210,7 +201,7 @@ TEST_CASE("for_each_variable visits p, then the variables in declaration order",
     if constexpr (std::is_same_v<Value, double>) values[0] = -1.0;
     if constexpr (std::is_same_v<Value, std::uint8_t>) values[1] = 7;
   });
-  CHECK(names == std::vector<std::string>{"p", "v", "m", "n", "flag"});
-  CHECK(set.get<P_m>()[0] == -1.0);
-  CHECK(set.get<P_flag>()[1] == 7);
+  CHECK(names == std::vector<std::string>{"p", "v", "e", "hits", "moving"});
+  CHECK(set.get<P_e>()[0] == -1.0);
+  CHECK(set.get<P_moving>()[1] == 7);
 }
