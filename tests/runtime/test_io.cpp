@@ -46,12 +46,7 @@ fs::path scratch_directory() {
 
 namespace {
 
-using sample::P_e;
-using sample::P_hits;
-using sample::P_moving;
-using sample::P_v;
-using sample::Set;
-
+using namespace sample;  // P_v, P_e, P_hits, P_moving, Set
 
 std::string file_path(const std::string& name) { return (scratch_directory() / name).string(); }
 

@@ -19,13 +19,7 @@ using partc::Vec;
 
 namespace {
 
-using sample::P_e;
-using sample::P_hits;
-using sample::P_moving;
-using sample::P_v;
-using sample::Set;
-
-
+using namespace sample;  // P_v, P_e, P_hits, P_moving, Set
 
 // Every array of particle i holds values derived from its id, so any
 // inconsistency between arrays after erase/permute shows up.
