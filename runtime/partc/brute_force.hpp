@@ -1,5 +1,5 @@
 // partc/brute_force.hpp: BruteForce<D>, the O(N)-per-query neighbour search.
-// Fastest for small N (see NeighbourSearch::default_brute_force_below) and the
+// Fastest for small N (see NeighbourSearch::default_margin) and the
 // only structure without restrictions: any radius, any periodic box.
 //
 // Query contract (shared by every search structure): for_each_near(q, f) calls

@@ -68,6 +68,18 @@ class CellGrid {
 
   std::size_t cell_count() const { return cell_count_; }
 
+  // The fraction of uniformly spread points a query examines: per dimension, the
+  // cells an interval of 2 * reach overlaps on average, out of all cells.
+  double visited_fraction() const {
+    double fraction = 1.0;
+    for (int k = 0; k < D; ++k) {
+      const double L = domain_.hi[k] - domain_.lo[k];
+      const double n = static_cast<double>(n_[k]);
+      fraction *= has_length(L) ? std::min(n, 1.0 + 2.0 * reach_ * inv_width_[k]) / n : 1.0;
+    }
+    return fraction;
+  }
+
   // True when every periodic dimension has >= 3 cells: no pair needs minimum_image.
   bool shifts_suffice() const { return !exact_; }
 

@@ -174,13 +174,13 @@ void check_all_structures(const Case<D>& c) {
         if (sorted[a] == sorted[b]) REQUIRE(order[a] < order[b]);
     check_no_errors("OrderedCellList", disagreements(c, sorted, s));
   }
-  for (std::size_t below : {std::size_t{0}, partc::NeighbourSearch<D>::default_brute_force_below}) {
+  for (double margin : {0.0, partc::NeighbourSearch<D>::default_margin}) {
     partc::ParticleSet<D, P_origin> set;
     for (const auto& p : c.points) {
       const std::size_t i = set.push_back(p);
       set.template get<P_origin>()[i] = set.ids()[i];
     }
-    partc::NeighbourSearch<D> s(below);
+    partc::NeighbourSearch<D> s(margin);
     s.build(c.domain, c.radius, set);
     REQUIRE(set.size() == c.points.size());
     for (std::size_t k = 0; k < set.size(); ++k) {  // the set was permuted as a whole
@@ -188,7 +188,7 @@ void check_all_structures(const Case<D>& c) {
       const Vec<D>& original = c.points[static_cast<std::size_t>(set.ids()[k])];
       REQUIRE(std::memcmp(&set.positions()[k], &original, sizeof original) == 0);  // NaN too
     }
-    check_no_errors("NeighbourSearch(" + std::to_string(below) + ")",
+    check_no_errors("NeighbourSearch(" + std::to_string(margin) + ")",
                     disagreements(c, set.positions(), s));
   }
 }
@@ -422,23 +422,31 @@ TEST_CASE("cell sizes follow L / floor(L / radius) and the count is capped", "[s
   CHECK(ordered.cell_count() == 4);
 }
 
-TEST_CASE("the facade picks brute force for small sets and thin periodic boxes", "[search]") {
+TEST_CASE("the facade picks brute force when queries would examine nearly every point",
+          "[search]") {
   const Domain<2> box = make_domain<2>(Periodicity::all, true);  // L = 2
   partc::ParticleSet<2> set;
   for (int i = 0; i < 100; ++i) set.push_back(Vec<2>{{0.01 * i, -0.013 * i}});
-  partc::NeighbourSearch<2> search(50);
-  search.build(box, 0.2, set);
+  partc::NeighbourSearch<2> search;
+  search.build(box, 0.2, set);  // 10 x 10 cells: a query examines 9% of the points
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
   CHECK(search.cell_count() == 10 * 10);
-  search.build(box, 0.7, set);  // 2 cells per periodic dimension
+  search.build(box, 0.66, set);  // 3 x 3 cells: a query examines 99%
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
   CHECK(search.cell_count() == 0);
-  search.build(box, 0.66, set);  // 3 cells
-  CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
-  partc::NeighbourSearch<2> small(101);
-  small.build(box, 0.1, set);
-  CHECK(small.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
+  search.build(box, 0.7, set);  // 2 cells per periodic dimension: shifts do not suffice
+  CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
+
+  partc::NeighbourSearch<2> eager(0.0);  // a cell list whenever one can be used
+  eager.build(box, 0.66, set);
+  CHECK(eager.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
+  eager.build(box, 0.7, set);
+  CHECK(eager.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
   const Domain<2> open = make_domain<2>(Periodicity::none, true);
-  search.build(open, 0.7, set);  // few cells are fine without periodicity
-  CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
+  eager.build(open, 0.7, set);  // few cells are fine without periodicity
+  CHECK(eager.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
+
+  partc::NeighbourSearch<2> reluctant(101.0);  // more than there are points to save
+  reluctant.build(box, 0.1, set);
+  CHECK(reluctant.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
 }
