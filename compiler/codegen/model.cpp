@@ -194,9 +194,9 @@ class ModelEmitter {
     line("#include <string>");
     line("#include <vector>");
     line("");
-    std::vector<std::string> headers = {"csv.hpp",          "domain.hpp", "errors.hpp",
-                                        "finite.hpp",       "model_support.hpp",
-                                        "particle_set.hpp", "rng.hpp",    "vec.hpp"};
+    std::vector<std::string> headers = {"csv.hpp",          "domain.hpp",   "errors.hpp",
+                                        "finite.hpp",       "model_support.hpp", "parallel.hpp",
+                                        "particle_set.hpp", "rng.hpp",      "vec.hpp"};
     if (std::any_of(search_member_.begin(), search_member_.end(),
                     [](const std::string& s) { return !s.empty(); }))
       headers.push_back("neighbour_search.hpp");
@@ -555,6 +555,8 @@ class ModelEmitter {
       buffer = buffer_member(home, st.var);
       linef("{}.resize({});", buffer, count);
     }
+    // Every iteration writes only particle i's value (aliasing saw to that).
+    linef("PARTC_PARALLEL_FOR({}, partc::LoopWork::{})", count, loops.empty() ? "light" : "heavy");
     linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", i, count);
     for (const Loop& l : loops) loop(l, st, names);
     assignment(st, names, buffer);
