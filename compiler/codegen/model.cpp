@@ -485,13 +485,17 @@ class ModelEmitter {
     // Names local to this kernel: the model's own, then ours.
     NameTable locals;
     for (const Label& l : st.labels) locals.reserve(cpp_name(l.name));
+    for (std::size_t s = 0; s < m_.sets.size(); ++s)
+      for (std::size_t v = kFirstUserVar; v < m_.sets[s].vars.size(); ++v)
+        locals.reserve(tag(static_cast<int>(s), static_cast<int>(v)));
     std::map<std::pair<int, int>, std::string> arrays;
     auto array_name = [&](int s, int var) -> std::string {
       auto key = std::make_pair(s, var);
       auto it = arrays.find(key);
       if (it != arrays.end()) return it->second;
+      // Another set's arrays are named "<var>_<set>" (strength_O): never a tag name.
       const std::string wanted = cpp_name(s == home ? m_.sets[s].vars[var].name
-                                                    : m_.sets[s].name + "_" + m_.sets[s].vars[var].name);
+                                                    : m_.sets[s].vars[var].name + "_" + m_.sets[s].name);
       return arrays[key] = locals.fresh(wanted);
     };
     std::set<std::pair<int, int>> needed = uses.arrays;
