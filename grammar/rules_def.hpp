@@ -156,6 +156,8 @@ struct tuple_id : locate {};
 struct param_decl_id : locate {};
 struct const_decl_id : locate {};
 struct var_decl_id : locate {};
+struct fn_decl_id : locate {};
+struct fn_param_id : locate {};
 struct particles_decl_id : locate {};
 struct stage_block_id : locate {};
 struct declaration_id : locate {};
@@ -204,6 +206,8 @@ x3::rule<tuple_id, std::vector<ast::Chain>> const tuple = "a tuple like (0, 0)";
 x3::rule<param_decl_id, ast::ParamDecl> const param_decl = "a param declaration";
 x3::rule<const_decl_id, ast::ConstDecl> const const_decl = "a const declaration";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
+x3::rule<fn_decl_id, ast::FnDecl> const fn_decl = "a function declaration";
+x3::rule<fn_param_id, ast::FnParam> const fn_param = "a parameter like r: real";
 x3::rule<particles_decl_id, ast::ParticlesDecl> const particles_decl = "a particles declaration";
 x3::rule<stage_block_id, ast::StageBlock> const stage_block = "an init or step block";
 x3::rule<declaration_id, ast::Declaration> const declaration = "a declaration";
@@ -211,7 +215,7 @@ x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
 x3::rule<end_of_vars_id> const end_of_vars = "a variable declaration like v: vec = 0, or '}'";
 x3::rule<end_of_input_id> const end_of_input =
-    "a declaration (model, dim, domain, param, const, particles, init or step)";
+    "a declaration (model, dim, domain, param, const, fn, particles, init or step)";
 
 // Semantic actions fill single-member nodes. X3 calls no on_success for a
 // rule whose definition holds an action, so each such rule (`*_text`) is
@@ -250,7 +254,7 @@ auto const set_dim_value = [](auto& ctx) {
 
 x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
-  s.add("model")("dim")("domain")("param")("const")("particles")("init")("step")("and")("or")(
+  s.add("model")("dim")("domain")("param")("const")("fn")("particles")("init")("step")("and")("or")(
       "not")("true")("false")("in");
   return s;
 }();
@@ -361,6 +365,13 @@ auto const param_decl_def = keyword("param") > identifier > ':' > identifier > '
 // const_decl = "const" , identifier , "=" , expression ;
 auto const const_decl_def = keyword("const") > identifier > '=' > expression;
 
+// fn_decl = "fn" , identifier , "(" , [ fn_param , { "," , fn_param } ] , ")" ,
+//           "=" , expression ;
+// fn_param = identifier , ":" , identifier ;
+auto const fn_decl_def = keyword("fn") > identifier > '(' > -(fn_param % ',') > ')' > '=' >
+                         expression;
+auto const fn_param_def = identifier > ':' > identifier;
+
 // var_decl = identifier , ":" , identifier , [ "=" , expression ] ;
 auto const var_decl_def = identifier > ':' > identifier > -('=' > expression);
 
@@ -375,9 +386,9 @@ auto const stage_block_def = (keyword_string("init") | keyword_string("step")) >
 auto const end_of_block_def = lit('}');
 
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
-//             | particles_decl | stage_block ;
-auto const declaration_def =
-    model_decl | dim_decl | domain_decl | param_decl | const_decl | particles_decl | stage_block;
+//             | fn_decl | particles_decl | stage_block ;
+auto const declaration_def = model_decl | dim_decl | domain_decl | param_decl | const_decl |
+                             fn_decl | particles_decl | stage_block;
 
 // program = { declaration } ;
 auto const program_def = *declaration > end_of_input;
@@ -389,7 +400,7 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     or_tail, and_expr, and_tail, not_expr, not_op, comparison, compare_tail,
                     additive, additive_tail, multiplicative, multiplicative_tail, unary, negation,
                     postfix, primary, norm, call, argument, label_binding, assignment, model_decl,
-                    dim_decl, domain_decl, tuple, param_decl, const_decl, var_decl, particles_decl,
+                    dim_decl, domain_decl, tuple, param_decl, const_decl, fn_decl, fn_param, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
 
 // Whitespace and comments from '#' to the end of the line.

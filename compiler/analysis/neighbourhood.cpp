@@ -14,7 +14,7 @@
 #include "analysis/neighbourhood.hpp"
 
 #include "ir/visitor.hpp"
-#include "sema/constant.hpp"
+#include "ir/constant.hpp"
 
 namespace partc {
 

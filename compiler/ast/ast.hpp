@@ -129,6 +129,16 @@ struct ParticlesDecl : Located {
   Chain count;
   std::vector<VarDecl> vars;
 };
+// fn NAME(a: real, b: vec) = expression
+struct FnParam : Located {
+  Identifier name;
+  Identifier type;
+};
+struct FnDecl : Located {
+  Identifier name;
+  std::vector<FnParam> params;
+  Chain value;
+};
 // init [SET] { ... } or step [SET] { ... }
 struct StageBlock : Located {
   std::string kind;
@@ -136,7 +146,7 @@ struct StageBlock : Located {
   std::vector<Assignment> body;
 };
 
-struct Declaration : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl,
+struct Declaration : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, FnDecl,
                                  ParticlesDecl, StageBlock> {
   using base_type::base_type;
   using base_type::operator=;

@@ -71,6 +71,12 @@ struct Printer {
   std::string operator()(const ConstDecl& n) const {
     return "(const " + n.name.name + " " + (*this)(n.value) + ") " + at(n);
   }
+  std::string operator()(const FnDecl& n) const {
+    std::string out = "(fn " + n.name.name + " (";
+    for (std::size_t k = 0; k < n.params.size(); ++k)
+      out += (k ? " " : "") + n.params[k].name.name + ":" + n.params[k].type.name;
+    return out + ") " + (*this)(n.value) + ") " + at(n);
+  }
   std::string operator()(const ParticlesDecl& n) const {
     std::string out = "(particles " + n.name.name + " " + (*this)(n.count) + ") " + at(n);
     for (const VarDecl& v : n.vars)

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "codegen/names.hpp"
+#include "ir/constant.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc::codegen {
@@ -89,6 +90,13 @@ class Printer {
       }
       case ExprKind::Random: return {random(*as<Random>(e)), kPrimary};
       case ExprKind::Accumulate: return {names_.accumulators.at(as<Accumulate>(e)->id), kPrimary};
+      case ExprKind::FnArg: return {cpp_name(as<FnArg>(e)->name), kPrimary};
+      case ExprKind::FnCall: {
+        auto c = as<FnCall>(e);
+        std::vector<std::string> args;  // an int passed for a real converts in the call
+        for (const Expr& a : c->args) args.push_back(print(a).text);
+        return {fmt::format("{}({})", names_.functions[c->fn], fmt::join(args, ", ")), kPrimary};
+      }
     }
     internal_error("emit_expression: unknown expression kind");
   }
@@ -115,6 +123,12 @@ class Printer {
     for (const Expr& a : n.args) args.push_back(print(a).text);
     if (n.fn == Function::Norm && as<Dx>(n.args[0]) && !names_.dx_norm.empty())
       return {names_.dx_norm, kPrimary};
+    // pow(x, k) for a small integer literal k: multiplications, as hand-written kernels do.
+    if (n.fn == Function::Pow) {
+      const std::optional<double> k = evaluate_constant(n.args[1], model_);
+      if (k && *k == std::floor(*k) && std::abs(*k) <= 32)
+        return {fmt::format("partc::ipow<{}>({})", static_cast<int>(*k), args[0]), kPrimary};
+    }
     switch (n.fn) {
       case Function::Dot: return {fmt::format("partc::dot({}, {})", args[0], args[1]), kPrimary};
       case Function::Norm: return {fmt::format("partc::norm({})", args[0]), kPrimary};

@@ -16,7 +16,7 @@
 #include "codegen/expression.hpp"
 #include "codegen/names.hpp"
 #include "ir/visitor.hpp"
-#include "sema/constant.hpp"
+#include "ir/constant.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -109,6 +109,11 @@ class ModelEmitter {
       set_type_.push_back(members_.fresh(s.name + "Set"));
     }
     for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
+    for (const char* api : {"params", "set_seed", "step_count", "param_info", "set_param", "init",
+                            "load", "step", "for_each_set", "check_finite", "compute_constants"})
+      members_.reserve(api);
+    for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
+    for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
     plan_searches();
   }
 
@@ -195,7 +200,7 @@ class ModelEmitter {
     line("#include <vector>");
     line("");
     std::vector<std::string> headers = {"csv.hpp",          "domain.hpp",   "errors.hpp",
-                                        "finite.hpp",       "model_support.hpp", "parallel.hpp",
+                                        "finite.hpp",       "math.hpp", "model_support.hpp", "parallel.hpp",
                                         "particle_set.hpp", "rng.hpp",      "vec.hpp"};
     if (std::any_of(search_member_.begin(), search_member_.end(),
                     [](const std::string& s) { return !s.empty(); }))
@@ -358,6 +363,7 @@ class ModelEmitter {
   // ---- private helpers --------------------------------------------------
 
   void helpers() {
+    for (std::size_t f = 0; f < m_.functions.size(); ++f) user_function(static_cast<int>(f));
     line("// Constants that depend on parameters, computed once they are known.");
     line("void compute_constants() {");
     for (std::size_t c = 0; c < m_.consts.size(); ++c)
@@ -370,6 +376,27 @@ class ModelEmitter {
       create_set(static_cast<int>(s));
       initialise_particle(static_cast<int>(s));
     }
+  }
+
+  void user_function(int f) {
+    const UserFn& fn = m_.functions[f];
+    std::vector<std::string> args;
+    for (std::size_t k = 0; k < fn.arg_names.size(); ++k)
+      args.push_back((fn.arg_types[k] == Type::Vec ? "const Vec& " : cpp_type(fn.arg_types[k]) + " ") +
+                     cpp_name(fn.arg_names[k]));
+    linef("// {}", source_line(fn.loc));
+    linef("//   {}", source_text(fn.loc));
+    linef("{} {}({}) const {{ return {}; }}", cpp_type(fn.body->type), function_member_[f],
+          fmt::join(args, ", "), expression(fn.body, base_names()));
+    line("");
+  }
+
+  // Names every expression may use: consts and functions.
+  ExpressionNames base_names() const {
+    ExpressionNames names;
+    names.consts = const_member_;
+    names.functions = function_member_;
+    return names;
   }
 
   void create_set(int s) {
@@ -428,8 +455,7 @@ class ModelEmitter {
   }
 
   ExpressionNames initialiser_names(int s) const {
-    ExpressionNames names;
-    names.consts = const_member_;
+    ExpressionNames names = base_names();
     names.home_set = s;
     names.labels = {"i"};
     names.array = [](int, int var) { return var == kId ? std::string("id") : std::string("?"); };
@@ -512,8 +538,7 @@ class ModelEmitter {
     }
     for (const auto& [s, var] : needed) array_name(s, var);
 
-    ExpressionNames names;
-    names.consts = const_member_;
+    ExpressionNames names = base_names();
     names.home_set = home;
     for (const Label& l : st.labels) names.labels.push_back(cpp_name(l.name));
     names.array = array_name;
@@ -756,7 +781,8 @@ class ModelEmitter {
   std::string out_;
   std::string cls_;
   NameTable members_;
-  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, search_member_;
+  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, search_member_,
+      function_member_;
   std::vector<Kernel> kernels_;
   std::vector<StageKind> kernel_stage_;
   std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element

@@ -32,6 +32,8 @@ enum class ExprKind {
   Component,
   Random,
   Accumulate,
+  FnArg,
+  FnCall,
 };
 
 struct ExprNode {
@@ -166,7 +168,34 @@ struct Accumulate : ExprNode {
   const int id;          // unique within the model, for naming and facts
 };
 
+// Inside a user function's body: its argument number `index`.
+struct FnArg : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::FnArg;
+  FnArg(Type t, int i, std::string n, Location l)
+      : ExprNode(node_kind, t, l), index(i), name(std::move(n)) {}
+  const int index;
+  const std::string name;  // as the function names it
+};
+
+// A call of the user function Model::functions[fn].
+struct FnCall : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::FnCall;
+  FnCall(Type t, int f, std::vector<Expr> a, Location l)
+      : ExprNode(node_kind, t, l), fn(f), args(std::move(a)) {}
+  const int fn;
+  const std::vector<Expr> args;
+};
+
 // ---- Declarations -------------------------------------------------------
+
+// fn name(a: real, ...) = body: pure, of its arguments, params and consts.
+struct UserFn {
+  std::string name;
+  std::vector<std::string> arg_names;
+  std::vector<Type> arg_types;
+  Expr body;  // its type is the result type
+  Location loc;
+};
 
 struct Param {
   std::string name;
@@ -240,6 +269,7 @@ struct Model {
   Domain domain;
   std::vector<Param> params;
   std::vector<Const> consts;
+  std::vector<UserFn> functions;
   std::vector<ParticleSet> sets;
   std::vector<Stage> stages;  // in file order
   int random_streams = 0;

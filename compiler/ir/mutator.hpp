@@ -21,6 +21,8 @@ class Mutator {
   virtual Expr mutate(const VarRef&, const Expr& self) { return self; }
   virtual Expr mutate(const Dx&, const Expr& self) { return self; }
   virtual Expr mutate(const Random&, const Expr& self) { return self; }
+  virtual Expr mutate(const FnArg&, const Expr& self) { return self; }
+  virtual Expr mutate(const FnCall& n, const Expr& self);
   virtual Expr mutate(const Unary& n, const Expr& self);
   virtual Expr mutate(const Binary& n, const Expr& self);
   virtual Expr mutate(const Call& n, const Expr& self);

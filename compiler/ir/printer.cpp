@@ -59,6 +59,11 @@ std::string to_string(const Expr& e, const Model& model, const std::vector<Label
       return fmt::format("{}{}#{}()", r->distribution == Distribution::Uniform ? "uniform" : "normal",
                          r->type == Type::Vec ? "_vec" : "", r->stream);
     }
+    case ExprKind::FnArg: return as<FnArg>(e)->name;
+    case ExprKind::FnCall: {
+      auto c = as<FnCall>(e);
+      return model.functions[c->fn].name + "(" + join(c->args, model, labels) + ")";
+    }
     case ExprKind::Accumulate: {
       auto a = as<Accumulate>(e);
       const Label& l = labels[a->label];
@@ -81,6 +86,13 @@ std::string to_string(const Model& model) {
     out += fmt::format("param {}: {} = {}\n", p.name, type_name(p.type), to_string(p.default_value, model, none));
   for (const Const& c : model.consts)
     out += fmt::format("const {}: {} = {}\n", c.name, type_name(c.type), to_string(c.value, model, none));
+  for (const UserFn& f : model.functions) {
+    std::string args;
+    for (std::size_t k = 0; k < f.arg_names.size(); ++k)
+      args += fmt::format("{}{}: {}", k ? ", " : "", f.arg_names[k], type_name(f.arg_types[k]));
+    out += fmt::format("fn {}({}): {} = {}\n", f.name, args, type_name(f.body->type),
+                       to_string(f.body, model, none));
+  }
   for (const ParticleSet& s : model.sets) {
     out += fmt::format("set {} (count {})\n", s.name, to_string(s.initial_count, model, none));
     for (const Variable& v : s.vars)

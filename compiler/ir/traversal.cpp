@@ -20,6 +20,8 @@ void Visitor::visit(const Expr& e) {
     case ExprKind::Component: return visit(*as<Component>(e));
     case ExprKind::Random: return visit(*as<Random>(e));
     case ExprKind::Accumulate: return visit(*as<Accumulate>(e));
+    case ExprKind::FnArg: return visit(*as<FnArg>(e));
+    case ExprKind::FnCall: return visit(*as<FnCall>(e));
   }
   internal_error("Visitor: unknown expression kind");
 }
@@ -39,6 +41,8 @@ Expr Mutator::mutate(const Expr& e) {
     case ExprKind::Component: return mutate(*as<Component>(e), e);
     case ExprKind::Random: return mutate(*as<Random>(e), e);
     case ExprKind::Accumulate: return mutate(*as<Accumulate>(e), e);
+    case ExprKind::FnArg: return mutate(*as<FnArg>(e), e);
+    case ExprKind::FnCall: return mutate(*as<FnCall>(e), e);
   }
   internal_error("Mutator: unknown expression kind");
 }
@@ -72,6 +76,12 @@ Expr Mutator::mutate(const Call& n, const Expr& self) {
   std::vector<Expr> args;
   if (!mutate_all(*this, n.args, args)) return self;
   return std::make_shared<Call>(n.type, n.fn, std::move(args), n.loc);
+}
+
+Expr Mutator::mutate(const FnCall& n, const Expr& self) {
+  std::vector<Expr> args;
+  if (!mutate_all(*this, n.args, args)) return self;
+  return std::make_shared<FnCall>(n.type, n.fn, std::move(args), n.loc);
 }
 
 Expr Mutator::mutate(const MakeVec& n, const Expr& self) {

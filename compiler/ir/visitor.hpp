@@ -21,6 +21,10 @@ class Visitor {
   virtual void visit(const VarRef&) {}
   virtual void visit(const Dx&) {}
   virtual void visit(const Random&) {}
+  virtual void visit(const FnArg&) {}
+  virtual void visit(const FnCall& n) {
+    for (const Expr& a : n.args) visit(a);
+  }
   virtual void visit(const Unary& n) { visit(n.operand); }
   virtual void visit(const Binary& n) {
     visit(n.lhs);

@@ -6,7 +6,7 @@
 #include <optional>
 #include <set>
 
-#include "sema/constant.hpp"
+#include "ir/constant.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -88,6 +88,7 @@ struct Scope {
   std::vector<ir::Label>* labels = nullptr;
   std::vector<int> bound;  // labels visible here, innermost last
   bool in_accumulation = false;
+  const ir::UserFn* function = nullptr;  // whose arguments are in scope
 };
 
 class Sema {
@@ -204,6 +205,7 @@ class Sema {
   void declare(const ast::Declaration& decl) {
     if (auto p = boost::get<ast::ParamDecl>(&decl)) declare_param(*p);
     if (auto c = boost::get<ast::ConstDecl>(&decl)) declare_const(*c);
+    if (auto f = boost::get<ast::FnDecl>(&decl)) declare_fn(*f);
     if (auto s = boost::get<ast::ParticlesDecl>(&decl)) declare_set(*s);
   }
 
@@ -230,6 +232,28 @@ class Sema {
     Expr value = check(decl.value, scope);
     model_.consts.push_back({decl.name.name, value->type, value, decl.loc});
     names_.emplace(decl.name.name, Name{Name::Const, static_cast<int>(model_.consts.size() - 1)});
+  }
+
+  void declare_fn(const ast::FnDecl& decl) {
+    declare_global(decl.name, "function");
+    ir::UserFn fn;
+    fn.name = decl.name.name;
+    fn.loc = decl.loc;
+    for (const ast::FnParam& a : decl.params) {
+      if (std::find(fn.arg_names.begin(), fn.arg_names.end(), a.name.name) != fn.arg_names.end())
+        fail(a.name.loc, "argument " + quoted(a.name.name) + " listed twice");
+      if (names_.count(a.name.name) || is_builtin_name(a.name.name))
+        fail(a.name.loc, "argument " + quoted(a.name.name) +
+                             " has the name of a param, const, set, function or builtin");
+      fn.arg_names.push_back(a.name.name);
+      fn.arg_types.push_back(type_named(a.type, true));
+    }
+    Scope scope;
+    scope.context = "a function body";
+    scope.function = &fn;
+    fn.body = check(decl.value, scope);
+    model_.functions.push_back(std::move(fn));
+    names_.emplace(decl.name.name, Name{Name::Fn, static_cast<int>(model_.functions.size() - 1)});
   }
 
   void declare_set(const ast::ParticlesDecl& decl) {
@@ -561,6 +585,14 @@ class Sema {
              "dx is the shortest vector from particle i to particle j, as in sum(j, |dx| < rc, ...)");
       return std::make_shared<ir::Dx>(scope.bound.front(), scope.bound.back(), n.loc);
     }
+    if (scope.function) {
+      const auto& args = scope.function->arg_names;
+      const auto arg = std::find(args.begin(), args.end(), n.name);
+      if (arg != args.end()) {
+        const int index = static_cast<int>(arg - args.begin());
+        return std::make_shared<ir::FnArg>(scope.function->arg_types[index], index, n.name, n.loc);
+      }
+    }
     auto it = names_.find(n.name);
     if (it != names_.end()) {
       switch (it->second.kind) {
@@ -572,6 +604,8 @@ class Sema {
                                                 it->second.index, n.loc);
         case Name::Set:
           fail(n.loc, quoted(n.name) + " is a particle set, not a value");
+        case Name::Fn:
+          fail(n.loc, quoted(n.name) + " is a function; call it, as in " + n.name + "(...)");
       }
     }
     if (kFunctions.count(n.name) || kReductions.count(n.name) || is_random_function(n.name))
@@ -596,7 +630,9 @@ class Sema {
            scope.where == Scope::Where::Initialiser
                ? "initial values may use params, consts and random numbers; set values "
                  "that depend on other variables in the init block"
-               : "");
+           : scope.function ? "pass the value as an argument, e.g. fn " + scope.function->name +
+                                  "(..., " + n.var.name + ": " + "real)"
+                            : "");
     int label = -1;
     for (int b : scope.bound)
       if ((*scope.labels)[b].name == n.label.name) label = b;
@@ -651,11 +687,17 @@ class Sema {
                                  std::string(type_name(args[k]->type)));
       return std::make_shared<ir::MakeVec>(std::move(args), n.loc);
     }
+    if (scope.function && name == scope.function->name)
+      fail(n.callee.loc, "function " + quoted(name) + " calls itself",
+           "functions are not recursive; write the repetition out");
+    if (auto user = names_.find(name); user != names_.end() && user->second.kind == Name::Fn)
+      return check_user_call(n, user->second.index, std::move(args));
     auto fn = kFunctions.find(name);
     if (fn == kFunctions.end()) {
       std::vector<std::string> known = {"vec", "sum", "count", "uniform", "normal", "uniform_vec",
                                         "normal_vec"};
       for (const auto& [k, unused] : kFunctions) known.push_back(k);
+      for (const auto& f : model_.functions) known.push_back(f.name);
       fail(n.callee.loc, "unknown function " + quoted(name) + suggestion(name, known));
     }
     if (static_cast<int>(args.size()) != fn->second.arity)
@@ -663,6 +705,17 @@ class Sema {
                       (fn->second.arity == 1 ? "" : "s") + ", not " + std::to_string(args.size()));
     return std::make_shared<ir::Call>(call_type(fn->second.fn, name, args), fn->second.fn,
                                       std::move(args), n.loc);
+  }
+
+  Expr check_user_call(const ast::Call& n, int index, std::vector<Expr> args) {
+    const ir::UserFn& fn = model_.functions[index];
+    if (args.size() != fn.arg_names.size())
+      fail(n.loc, fn.name + "() takes " + std::to_string(fn.arg_names.size()) + " argument" +
+                      (fn.arg_names.size() == 1 ? "" : "s") + ", not " + std::to_string(args.size()));
+    for (std::size_t k = 0; k < args.size(); ++k)
+      args[k] = convert(args[k], fn.arg_types[k], args[k]->loc,
+                        "argument " + fn.arg_names[k] + " of " + fn.name);
+    return std::make_shared<ir::FnCall>(fn.body->type, index, std::move(args), n.loc);
   }
 
   Type call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args) {
@@ -785,7 +838,7 @@ class Sema {
   }
 
   struct Name {
-    enum Kind { Param, Const, Set } kind;
+    enum Kind { Param, Const, Set, Fn } kind;
     int index;
   };
 

@@ -1,4 +1,4 @@
-#include "sema/constant.hpp"
+#include "ir/constant.hpp"
 
 #include <algorithm>
 #include <cmath>
