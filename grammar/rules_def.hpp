@@ -157,6 +157,9 @@ struct param_decl_id : locate {};
 struct const_decl_id : locate {};
 struct var_decl_id : locate {};
 struct fn_decl_id : locate {};
+struct schedule_block_id : locate {};
+struct schedule_item_id : locate {};
+struct schedule_option_id : locate {};
 struct fn_param_id : locate {};
 struct particles_decl_id : locate {};
 struct stage_block_id : locate {};
@@ -207,6 +210,14 @@ x3::rule<param_decl_id, ast::ParamDecl> const param_decl = "a param declaration"
 x3::rule<const_decl_id, ast::ConstDecl> const const_decl = "a const declaration";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
 x3::rule<fn_decl_id, ast::FnDecl> const fn_decl = "a function declaration";
+x3::rule<schedule_block_id, ast::ScheduleBlock> const schedule_block = "a schedule block";
+x3::rule<class schedule_block_text_id, ast::ScheduleBlock> const schedule_block_text =
+    "a schedule block";
+x3::rule<schedule_item_id, ast::ScheduleItem> const schedule_item = "a schedule entry";
+x3::rule<class end_of_schedule_id> const end_of_schedule =
+    "a schedule entry like force: search = cell_list, or '}'";
+x3::rule<schedule_option_id, ast::ScheduleOption> const schedule_option =
+    "an option like search = kd_tree or skin = 0.3";
 x3::rule<fn_param_id, ast::FnParam> const fn_param = "a parameter like r: real";
 x3::rule<particles_decl_id, ast::ParticlesDecl> const particles_decl = "a particles declaration";
 x3::rule<stage_block_id, ast::StageBlock> const stage_block = "an init or step block";
@@ -215,7 +226,7 @@ x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
 x3::rule<end_of_vars_id> const end_of_vars = "a variable declaration like v: vec = 0, or '}'";
 x3::rule<end_of_input_id> const end_of_input =
-    "a declaration (model, dim, domain, param, const, fn, particles, init or step)";
+    "a declaration (model, dim, domain, param, const, fn, particles, init, step or schedule)";
 
 // Semantic actions fill single-member nodes. X3 calls no on_success for a
 // rule whose definition holds an action, so each such rule (`*_text`) is
@@ -254,7 +265,7 @@ auto const set_dim_value = [](auto& ctx) {
 
 x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
-  s.add("model")("dim")("domain")("param")("const")("fn")("particles")("init")("step")("and")("or")(
+  s.add("model")("dim")("domain")("param")("const")("fn")("particles")("schedule")("init")("step")("and")("or")(
       "not")("true")("false")("in");
   return s;
 }();
@@ -335,12 +346,15 @@ auto const argument_def = label_binding | expression;
 // label_binding = identifier , "in" , identifier ;
 auto const label_binding_def = identifier >> keyword("in") > identifier;
 
-// assignment = indexed , assign_op , expression , [ ";" ] ;
+// assignment = [ identifier , ":" ] , indexed , assign_op , expression , [ ";" ] ;
 // assign_op  = "=" | "+=" | "-=" | "*=" | "/=" ;
 auto const assign_op = x3::rule<class assign_op_id, std::string>{"'=', '+=', '-=', '*=' or '/='"} =
     x3::string("+=") | x3::string("-=") | x3::string("*=") | x3::string("/=") |
     (x3::string("=") >> !lit('='));
-auto const assignment_def = indexed > assign_op > expression > -lit(';');
+// The lookahead (&) commits to a name only when a ':' follows: X3 would
+// otherwise keep the half-parsed name of `v[i]` in the optional.
+auto const statement_name = &(identifier >> ':') >> identifier >> ':';
+auto const assignment_def = -statement_name >> indexed > assign_op > expression > -lit(';');
 
 // model_decl = "model" , identifier ;
 auto const model_decl_def = model_decl_text;
@@ -385,10 +399,21 @@ auto const stage_block_def = (keyword_string("init") | keyword_string("step")) >
                              '{' > *assignment > end_of_block;
 auto const end_of_block_def = lit('}');
 
+// schedule_block = "schedule" , "{" , { schedule_item } , "}" ;
+// schedule_item  = identifier , ":" , option , { "," , option } ;
+// option         = identifier , "=" , expression ;
+auto const set_items = [](auto& ctx) { _val(ctx).items = std::move(_attr(ctx)); };
+auto const schedule_block_def = schedule_block_text;
+auto const schedule_block_text_def =
+    (keyword("schedule") > '{' > *schedule_item > end_of_schedule)[set_items];
+auto const end_of_schedule_def = lit('}');
+auto const schedule_item_def = identifier > ':' > (schedule_option % ',');
+auto const schedule_option_def = identifier > '=' > expression;
+
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
-//             | fn_decl | particles_decl | stage_block ;
+//             | fn_decl | particles_decl | stage_block | schedule_block ;
 auto const declaration_def = model_decl | dim_decl | domain_decl | param_decl | const_decl |
-                             fn_decl | particles_decl | stage_block;
+                             fn_decl | particles_decl | stage_block | schedule_block;
 
 // program = { declaration } ;
 auto const program_def = *declaration > end_of_input;
@@ -400,7 +425,8 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     or_tail, and_expr, and_tail, not_expr, not_op, comparison, compare_tail,
                     additive, additive_tail, multiplicative, multiplicative_tail, unary, negation,
                     postfix, primary, norm, call, argument, label_binding, assignment, model_decl,
-                    dim_decl, domain_decl, tuple, param_decl, const_decl, fn_decl, fn_param, var_decl, particles_decl,
+                    dim_decl, domain_decl, tuple, param_decl, const_decl, fn_decl, fn_param, schedule_block,
+                    schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
 
 // Whitespace and comments from '#' to the end of the line.

@@ -94,6 +94,7 @@ struct Call : Located {
 
 // target op value, op one of = += -= *= /=
 struct Assignment : Located {
+  boost::optional<Identifier> name;  // `force: v[i] += ...`, for the schedule
   Indexed target;
   std::string op;
   Chain value;
@@ -146,8 +147,22 @@ struct StageBlock : Located {
   std::vector<Assignment> body;
 };
 
+// schedule { force: search = kd_tree, skin = 0.3 }: how named statements
+// run, kept apart from what they compute.
+struct ScheduleOption : Located {
+  Identifier key;
+  Chain value;
+};
+struct ScheduleItem : Located {
+  Identifier statement;
+  std::vector<ScheduleOption> options;
+};
+struct ScheduleBlock : Located {
+  std::vector<ScheduleItem> items;
+};
+
 struct Declaration : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, FnDecl,
-                                 ParticlesDecl, StageBlock> {
+                                 ParticlesDecl, StageBlock, ScheduleBlock> {
   using base_type::base_type;
   using base_type::operator=;
 };

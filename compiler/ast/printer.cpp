@@ -87,7 +87,18 @@ struct Printer {
   std::string operator()(const StageBlock& n) const {
     std::string out = "(" + n.kind + (n.set ? " " + n.set->name : "") + ") " + at(n);
     for (const Assignment& a : n.body)
-      out += "\n  (" + a.op + " " + (*this)(a.target) + " " + (*this)(a.value) + ") " + at(a);
+      out += "\n  (" + (a.name ? a.name->name + ": " : std::string()) + a.op + " " +
+             (*this)(a.target) + " " + (*this)(a.value) + ") " + at(a);
+    return out;
+  }
+  std::string operator()(const ScheduleBlock& n) const {
+    std::string out = "(schedule) " + at(n);
+    for (const ScheduleItem& item : n.items) {
+      out += "\n  (" + item.statement.name;
+      for (const ScheduleOption& o : item.options)
+        out += " (" + o.key.name + " " + (*this)(o.value) + ")";
+      out += ") " + at(item);
+    }
     return out;
   }
 };

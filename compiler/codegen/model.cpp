@@ -153,26 +153,36 @@ class ModelEmitter {
   }
   std::string source_text(Location loc) const { return one_line(file_.slice(loc)); }
 
-  // ---- searches: one per set that a neighbourhood sum runs over ----------
+  // ---- searches: one per set that neighbourhood sums run over, and per
+  // search structure the schedule forces on some of them -----------------
+
+  using SearchKey = std::pair<int, SearchChoice>;  // (set searched, structure)
 
   void plan_searches() {
-    search_member_.assign(m_.sets.size(), "");
-    for (const auto& [id, fact] : facts_.neighbourhoods) {
-      if (fact.kind != SearchFact::Kind::Neighbours) continue;
-      const int set = accumulation_set(id);
-      if (search_member_[set].empty()) search_member_[set] = members_.fresh(m_.sets[set].name + "_search_");
-    }
-  }
-
-  int accumulation_set(int accumulation_id) const {
     for (const Stage& stage : m_.stages)
       for (const Statement& st : stage.statements) {
         StatementUses uses;
         uses.visit(st.value);
-        for (const Accumulate* acc : uses.accumulations)
-          if (acc->id == accumulation_id) return st.labels[acc->label].set;
+        for (const Accumulate* acc : uses.accumulations) {
+          if (facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours) continue;
+          if (st.schedule.skin) {
+            if (!lists_.count(&st))
+              lists_[&st] = members_.fresh(
+                  (st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
+            continue;
+          }
+          const SearchKey key{st.labels[acc->label].set, st.schedule.search};
+          if (searches_.count(key)) continue;
+          const std::string& set = m_.sets[key.first].name;
+          searches_[key] = members_.fresh(key.second == SearchChoice::Auto
+                                              ? set + "_search_"
+                                              : set + "_" + search_choice_name(key.second) + "_");
+        }
       }
-    internal_error("accumulation without a statement");
+  }
+
+  const std::string& search_for(int set, const Statement& st) const {
+    return searches_.at({set, st.schedule.search});
   }
 
   // ---- header -----------------------------------------------------------
@@ -191,20 +201,17 @@ class ModelEmitter {
     linef("// Model {}: {} dimensions, domain {}, {}.", m_.name, m_.dim, fmt::join(extent, " x "),
           periodic.empty() ? std::string("not periodic")
                            : "periodic in " + fmt::format("{}", fmt::join(periodic, ", ")));
-    line("#include <algorithm>");
-    line("#include <cmath>");
-    line("#include <cstdint>");
-    line("#include <limits>");
-    line("#include <map>");
-    line("#include <string>");
-    line("#include <vector>");
+    std::vector<std::string> std_headers = {"algorithm", "cmath",  "cstdint", "limits",
+                                            "map",       "string", "vector"};
+    if (!lists_.empty()) std_headers.push_back("optional");
+    std::sort(std_headers.begin(), std_headers.end());
+    for (const std::string& h : std_headers) linef("#include <{}>", h);
     line("");
     std::vector<std::string> headers = {"csv.hpp",          "domain.hpp",   "errors.hpp",
                                         "finite.hpp",       "math.hpp", "model_support.hpp", "parallel.hpp",
                                         "particle_set.hpp", "rng.hpp",      "vec.hpp"};
-    if (std::any_of(search_member_.begin(), search_member_.end(),
-                    [](const std::string& s) { return !s.empty(); }))
-      headers.push_back("neighbour_search.hpp");
+    if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
+    if (!lists_.empty()) headers.push_back("verlet_list.hpp");
     if (options_.driver_main) headers.push_back("driver.hpp");
     std::sort(headers.begin(), headers.end());
     for (const std::string& h : headers) linef("#include <partc/{}>", h);
@@ -532,9 +539,13 @@ class ModelEmitter {
       dx.visit(acc->condition);
       dx.visit(acc->body);
       const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
-      if (fact.kind == SearchFact::Kind::Neighbours || dx.dx) needed.insert({home, kPosition});
-      if (fact.kind == SearchFact::Kind::Dense && dx.dx)
+      // A search is asked from p[i]; Verlet lists by i alone; a dense loop computes dx itself.
+      if (fact.kind == SearchFact::Kind::Neighbours && !st.schedule.skin)
+        needed.insert({home, kPosition});
+      if (fact.kind == SearchFact::Kind::Dense && dx.dx) {
+        needed.insert({home, kPosition});
         needed.insert({st.labels[acc->label].set, kPosition});
+      }
     }
     for (const auto& [s, var] : needed) array_name(s, var);
 
@@ -572,7 +583,12 @@ class ModelEmitter {
       const std::string radius = expression(fact.radius, names);
       if (std::find(list.begin(), list.end(), radius) == list.end()) list.push_back(radius);
     }
-    for (const auto& [s, list] : radii) refresh_search(s, list, locals.fresh("radius"));
+    for (const auto& [s, list] : radii) {
+      if (st.schedule.skin)
+        refresh_lists(st, list, locals.fresh("radius"), names);
+      else
+        refresh_search(s, search_for(s, st), list, locals.fresh("radius"));
+    }
 
     for (const auto& [key, name] : arrays) {
       const bool written = key.first == home && key.second == st.var;
@@ -611,16 +627,30 @@ class ModelEmitter {
     return name;
   }
 
-  void refresh_search(int s, const std::vector<std::string>& radii, const std::string& local) {
+  void refresh_search(int s, const std::string& search, const std::vector<std::string>& radii,
+                      const std::string& local) {
     std::string radius = radii.front();
     for (std::size_t k = 1; k < radii.size(); ++k) radius = "std::max(" + radius + ", " + radii[k] + ")";
-    const std::string& search = search_member_[s];
     linef("const double {} = {};", local, radius);
     linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
     linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
     linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
     linef("{}radius_ = {};", search, local);
     line("}");
+  }
+
+  // Verlet lists: reused while no particle has moved half the skin since
+  // they were built; a rebuild may reorder the set, like a search build.
+  void refresh_lists(const Statement& st, const std::vector<std::string>& radii,
+                     const std::string& local, const ExpressionNames& names) {
+    std::string radius = radii.front();
+    for (std::size_t k = 1; k < radii.size(); ++k) radius = "std::max(" + radius + ", " + radii[k] + ")";
+    const std::string& lists = lists_.at(&st);
+    const std::string skin = expression(st.schedule.skin, names);
+    linef("const double {} = {};", local, radius);
+    linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1});", lists, skin);
+    linef("if ({}->update(domain_, {}, {})) ++{};  // rebuilt: {} may be reordered", lists, local,
+          set_member_[st.set], epoch_[st.set], m_.sets[st.set].name);
   }
 
   // Accumulations of one statement over the same set, found the same way
@@ -701,8 +731,12 @@ class ModelEmitter {
     const std::string i = names.labels[0];
     const std::string home_p = names.array(st.set, kPosition);
     if (l.kind == SearchFact::Kind::Neighbours) {
-      linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_member_[l.set],
-            home_p, i, reads_j ? " " + j : "", dx.dx ? " dx" : "");
+      if (st.schedule.skin)
+        linef("{}->for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", lists_.at(&st), i,
+              reads_j ? " " + j : "", dx.dx ? " dx" : "");
+      else
+        linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_for(l.set, st),
+              home_p, i, reads_j ? " " + j : "", dx.dx ? " dx" : "");
       out_ += body;
       line("});");
     } else {
@@ -764,11 +798,19 @@ class ModelEmitter {
       linef("{} {};", set_type_[s], set_member_[s]);
       linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],
             m_.sets[s].name);
-      if (search_member_[s].empty()) continue;
-      linef("partc::NeighbourSearch<{}> {};", m_.dim, search_member_[s]);
-      linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", search_member_[s]);
-      linef("double {}radius_ = 0;", search_member_[s]);
     }
+    for (const auto& [key, search] : searches_) {
+      if (key.second == SearchChoice::Auto)
+        linef("partc::NeighbourSearch<{}> {};  // over {}", m_.dim, search, m_.sets[key.first].name);
+      else
+        linef("partc::NeighbourSearch<{0}> {1}{{partc::NeighbourSearch<{0}>::Kind::{2}}};  // schedule",
+              m_.dim, search, search_choice_name(key.second));
+      linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", search);
+      linef("double {}radius_ = 0;", search);
+    }
+    for (const auto& [st, lists] : lists_)
+      linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
+            source_text(st->schedule.skin->loc));
     for (const auto& [key, buffer] : buffers_)
       linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second, buffer.first,
             m_.sets[key.first].vars[key.second].name);
@@ -781,8 +823,9 @@ class ModelEmitter {
   std::string out_;
   std::string cls_;
   NameTable members_;
-  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, search_member_,
-      function_member_;
+  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
+  std::map<SearchKey, std::string> searches_;
+  std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   std::vector<Kernel> kernels_;
   std::vector<StageKind> kernel_stage_;
   std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element

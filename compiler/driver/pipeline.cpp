@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "analysis/schedule.hpp"
 #include "grammar/parser.hpp"
 #include "ir/visitor.hpp"
 #include "sema/sema.hpp"
@@ -17,6 +18,8 @@ Compilation analyse(const SourceFile& file) {
   // Facts the code generator acts on. Each pass reads the IR only.
   c.facts.aliasing = detect_aliasing(c.model);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
+  // The schedule can only be judged once neighbourhood sums are known.
+  check_schedule(c.model, c.facts.neighbourhoods);
   return c;
 }
 
@@ -53,11 +56,18 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
         out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
                            st.labels[acc->label].name, fact.reason);
-        if (fact.kind == SearchFact::Kind::Neighbours)
-          out +=
-              "    at run time: brute force below partc::NeighbourSearch's measured crossover "
-              "(or when a periodic side holds fewer than 3 cells), else an ordered cell list of "
-              "cells at least that radius wide, rebuilt only after positions change\n";
+        if (fact.kind != SearchFact::Kind::Neighbours) continue;
+        if (st.schedule.skin)
+          out += "    schedule: Verlet lists with skin " +
+                 std::string(file.slice(st.schedule.skin->loc)) +
+                 ", rebuilt only when a particle has moved more than half the skin\n";
+        else if (st.schedule.search != ir::SearchChoice::Auto)
+          out += std::string("    schedule: always ") + ir::search_choice_name(st.schedule.search) + "\n";
+        else
+          out += "    at run time: brute force when a cell list would save each query fewer than "
+                 "partc::NeighbourSearch::default_margin pair tests (few particles, or a radius "
+                 "near the box size), else an ordered cell list; rebuilt only after positions "
+                 "change\n";
       }
     }
   }

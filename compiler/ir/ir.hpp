@@ -239,8 +239,20 @@ struct Label {
 enum class AssignOp { Set, Add, Sub, Mul, Div };
 const char* assign_op_spelling(AssignOp op);
 
+// How a statement's neighbourhood sums find their particles, when the
+// model's schedule says so; otherwise the runtime decides.
+enum class SearchChoice { Auto, BruteForce, CellList, KdTree };
+const char* search_choice_name(SearchChoice c);  // as .part spells it
+struct Schedule {
+  SearchChoice search = SearchChoice::Auto;
+  Expr skin;  // non-null: Verlet lists with this skin, reused across steps
+  Location loc;
+};
+
 // target[labels[0]] op= value, run for every particle of the target's set.
 struct Statement {
+  std::string name;  // empty unless named for the schedule
+  Schedule schedule;
   int set;
   int var;
   AssignOp op;

@@ -60,6 +60,16 @@ const char* assign_op_spelling(AssignOp op) {
   return "?";
 }
 
+const char* search_choice_name(SearchChoice c) {
+  switch (c) {
+    case SearchChoice::Auto: return "auto";
+    case SearchChoice::BruteForce: return "brute_force";
+    case SearchChoice::CellList: return "cell_list";
+    case SearchChoice::KdTree: return "kd_tree";
+  }
+  return "?";
+}
+
 int ParticleSet::find_var(const std::string& var_name) const {
   for (std::size_t k = 0; k < vars.size(); ++k)
     if (vars[k].name == var_name) return static_cast<int>(k);

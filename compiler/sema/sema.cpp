@@ -103,6 +103,9 @@ class Sema {
                          "declare one with: particles P(N) { v: vec = 0 }"});
     for (const ast::Declaration& decl : program.declarations)
       if (auto stage = boost::get<ast::StageBlock>(&decl)) check_stage(*stage);
+    for (const ast::Declaration& decl : program.declarations)
+      if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
+        for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
     if (!errors_.empty()) throw CompileError(errors_);
     return std::move(model_);
   }
@@ -307,8 +310,19 @@ class Sema {
       errors_.push_back(e.diagnostic);
       return;
     }
+    const int stage_index = static_cast<int>(model_.stages.size());
     for (const ast::Assignment& a : block.body)
-      guarded([&] { stage.statements.push_back(check_statement(a, stage.set)); });
+      guarded([&] {
+        stage.statements.push_back(check_statement(a, stage.set));
+        if (!a.name) return;
+        const auto [it, fresh] = statement_names_.emplace(
+            a.name->name,
+            StatementRef{stage_index, static_cast<int>(stage.statements.size() - 1), a.name->loc});
+        if (!fresh)
+          fail(a.name->loc, "a second statement named " + quoted(a.name->name),
+               "the first is on line " + std::to_string(file_.line_column(it->second.loc.begin).line));
+        stage.statements.back().name = a.name->name;
+      });
     model_.stages.push_back(std::move(stage));
   }
 
@@ -388,6 +402,54 @@ class Sema {
     }
     st.value = value;
     return st;
+  }
+
+  // ---- schedule ---------------------------------------------------------
+
+  void check_schedule(const ast::ScheduleItem& item) {
+    auto named = statement_names_.find(item.statement.name);
+    if (named == statement_names_.end()) {
+      std::vector<std::string> known;
+      for (const auto& [name, unused] : statement_names_) known.push_back(name);
+      fail(item.statement.loc, "no statement named " + quoted(item.statement.name) +
+                                   suggestion(item.statement.name, known),
+           "name a statement where it is written: force: v[i] += sum(...)");
+    }
+    ir::Statement& st = model_.stages[named->second.stage].statements[named->second.statement];
+    if (st.schedule.loc.end != 0)
+      fail(item.statement.loc, "statement " + quoted(st.name) + " is scheduled twice");
+    st.schedule.loc = item.loc;
+    std::set<std::string> seen;
+    for (const ast::ScheduleOption& option : item.options) {
+      if (!seen.insert(option.key.name).second)
+        fail(option.key.loc, "option " + quoted(option.key.name) + " given twice");
+      if (option.key.name == "search") {
+        st.schedule.search = search_choice(option.value);
+      } else if (option.key.name == "skin") {
+        Scope scope;
+        scope.context = "a skin";
+        Expr skin = check(option.value, scope);
+        if (!ir::is_numeric_scalar(skin->type))
+          fail(option.value.loc, "the skin must be a number, not a " + std::string(type_name(skin->type)));
+        if (auto value = evaluate_constant(skin, model_); value && !(*value >= 0))
+          fail(option.value.loc, "the skin must not be negative");
+        st.schedule.skin = skin;
+      } else {
+        fail(option.key.loc, "unknown schedule option " + quoted(option.key.name) +
+                                 suggestion(option.key.name, {"search", "skin"}),
+             "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH");
+      }
+    }
+  }
+
+  ir::SearchChoice search_choice(const ast::Chain& value) {
+    const ast::Operand* sole = ast::sole_operand(value);
+    const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+    for (ir::SearchChoice c : {ir::SearchChoice::Auto, ir::SearchChoice::BruteForce,
+                               ir::SearchChoice::CellList, ir::SearchChoice::KdTree})
+      if (id && id->name == ir::search_choice_name(c)) return c;
+    fail(value.loc, "unknown search " + quoted(source_text(value.loc)),
+         "searches: auto, brute_force, cell_list, kd_tree");
   }
 
   static std::vector<std::string> var_names(const ir::ParticleSet& set) {
@@ -837,6 +899,11 @@ class Sema {
     fail(ast::location_of(a), "'in' binds a label only in the first argument of " + name);
   }
 
+  struct StatementRef {
+    int stage, statement;
+    Location loc;
+  };
+
   struct Name {
     enum Kind { Param, Const, Set, Fn } kind;
     int index;
@@ -850,6 +917,7 @@ class Sema {
   std::vector<Diagnostic> errors_;
   std::map<std::string, Location> globals_;
   std::map<std::string, Name> names_;
+  std::map<std::string, StatementRef> statement_names_;
 };
 
 }  // namespace

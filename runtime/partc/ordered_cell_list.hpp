@@ -54,6 +54,23 @@ class OrderedCellList {
     });
   }
 
+  // The mean number of points a query examines, over the points of the last
+  // build (each cell's first point stands for all of its points): how much a
+  // clustered distribution costs this structure.
+  double mean_examined() const {
+    if (points_.empty()) return 0.0;
+    double total = 0.0;
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      const std::size_t in_cell = start_[c + 1] - start_[c];
+      if (in_cell == 0) continue;
+      std::size_t examined = 0;
+      grid_.for_each_run(points_[start_[c]], [&](std::size_t first, std::size_t last, const Vec<D>&,
+                                                 auto) { examined += start_[last + 1] - start_[first]; });
+      total += static_cast<double>(in_cell) * static_cast<double>(examined);
+    }
+    return total / static_cast<double>(points_.size());
+  }
+
   // The permutation of the last build: sorted[k] = points[order()[k]].
   const std::vector<std::size_t>& order() const { return order_; }
   std::size_t cell_count() const { return grid_.cell_count(); }

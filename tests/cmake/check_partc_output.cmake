@@ -10,6 +10,7 @@
 # rewritten from what partc printed (then review the diff before committing).
 get_filename_component(dir ${PART} DIRECTORY)
 get_filename_component(name ${PART} NAME)
+get_filename_component(stem ${PART} NAME_WE)
 file(MAKE_DIRECTORY ${WORK})
 set(out ${WORK}/${name}.cpp)
 file(REMOVE ${out})
@@ -43,5 +44,5 @@ if(NOT actual STREQUAL expected)
   file(WRITE ${WORK}/${name}.actual "${actual}")
   execute_process(COMMAND diff -u ${EXPECTED} ${WORK}/${name}.actual OUTPUT_VARIABLE difference)
   message(FATAL_ERROR "partc ${name}: output differs from ${EXPECTED}\n${difference}\n"
-                      "(if the change is intended: PARTC_UPDATE_GOLDEN=1 ctest -R ${name})")
+                      "(if the change is intended: PARTC_UPDATE_GOLDEN=1 ctest -R ${stem}, then review the diff)")
 endif()

@@ -174,13 +174,19 @@ void check_all_structures(const Case<D>& c) {
         if (sorted[a] == sorted[b]) REQUIRE(order[a] < order[b]);
     check_no_errors("OrderedCellList", disagreements(c, sorted, s));
   }
-  for (double margin : {0.0, partc::NeighbourSearch<D>::default_margin}) {
+  using Search = partc::NeighbourSearch<D>;
+  const std::vector<std::pair<std::string, Search>> searches = {
+      {"NeighbourSearch(margin 0)", Search(0.0)},
+      {"NeighbourSearch(default margin)", Search()},
+      {"NeighbourSearch(forced brute force)", Search(Search::Kind::brute_force)},
+      {"NeighbourSearch(forced cell list)", Search(Search::Kind::cell_list)},
+      {"NeighbourSearch(forced k-d tree)", Search(Search::Kind::kd_tree)}};
+  for (auto [name, s] : searches) {
     partc::ParticleSet<D, P_origin> set;
     for (const auto& p : c.points) {
       const std::size_t i = set.push_back(p);
       set.template get<P_origin>()[i] = set.ids()[i];
     }
-    partc::NeighbourSearch<D> s(margin);
     s.build(c.domain, c.radius, set);
     REQUIRE(set.size() == c.points.size());
     for (std::size_t k = 0; k < set.size(); ++k) {  // the set was permuted as a whole
@@ -188,8 +194,7 @@ void check_all_structures(const Case<D>& c) {
       const Vec<D>& original = c.points[static_cast<std::size_t>(set.ids()[k])];
       REQUIRE(std::memcmp(&set.positions()[k], &original, sizeof original) == 0);  // NaN too
     }
-    check_no_errors("NeighbourSearch(" + std::to_string(margin) + ")",
-                    disagreements(c, set.positions(), s));
+    check_no_errors(name, disagreements(c, set.positions(), s));
   }
 }
 
@@ -446,7 +451,38 @@ TEST_CASE("the facade picks brute force when queries would examine nearly every 
   eager.build(open, 0.7, set);  // few cells are fine without periodicity
   CHECK(eager.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
 
+  partc::NeighbourSearch<2> cells(partc::NeighbourSearch<2>::Kind::cell_list);
+  cells.build(box, 0.7, set);  // forced: the cell list's exact mode serves 2 cells a side
+  CHECK(cells.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
+  partc::NeighbourSearch<2> brute(partc::NeighbourSearch<2>::Kind::brute_force);
+  brute.build(box, 0.01, set);
+  CHECK(brute.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
+
+  partc::NeighbourSearch<2> tree(partc::NeighbourSearch<2>::Kind::kd_tree);
+  tree.build(box, 0.7, set);
+  CHECK(tree.kind() == partc::NeighbourSearch<2>::Kind::kd_tree);
+
   partc::NeighbourSearch<2> reluctant(101.0);  // more than there are points to save
   reluctant.build(box, 0.1, set);
   CHECK(reluctant.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
+}
+
+TEST_CASE("the facade picks a k-d tree for tightly clustered points", "[search]") {
+  const Domain<2> box = make_domain<2>(Periodicity::all, true);  // L = 2
+  std::mt19937_64 random(4);
+  std::normal_distribution<double> blob(0.0, 0.002);
+  std::uniform_real_distribution<double> anywhere(-1.0, 1.0);
+  partc::ParticleSet<2> clustered, uniform;
+  for (int i = 0; i < 20000; ++i) {
+    const double cx = (i % 4) * 0.5 - 0.75;  // four blobs
+    clustered.push_back(Vec<2>{{cx + blob(random), 0.3 + blob(random)}});
+    uniform.push_back(Vec<2>{{anywhere(random), anywhere(random)}});
+  }
+  // About 20 neighbours per query in the blobs; cells sized for that radius
+  // hold thousands of points each.
+  partc::NeighbourSearch<2> search;
+  search.build(box, 0.0002, clustered);
+  CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::kd_tree);
+  search.build(box, 0.02, uniform);
+  CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
 }

@@ -1,0 +1,62 @@
+// Decides whether each schedule entry applies to something.
+//
+// A schedule says how a statement's neighbourhood sums search (a forced
+// structure, Verlet lists with a skin). It runs after the neighbourhood
+// analysis because only that analysis knows which sums are neighbourhood
+// sums: `search = kd_tree` on a statement whose sums are all dense would
+// silently do nothing, so it is an error instead.
+#include "analysis/schedule.hpp"
+
+#include "ir/visitor.hpp"
+#include "support/diagnostics.hpp"
+
+namespace partc {
+
+namespace {
+// The neighbourhood sums of a statement, and whether one runs over another set.
+class NeighbourhoodSums : public ir::Visitor {
+ public:
+  NeighbourhoodSums(const NeighbourhoodReport& report, const ir::Statement& st)
+      : report_(report), st_(st) {}
+  bool found = false, over_other_set = false;
+  using ir::Visitor::visit;
+
+ protected:
+  void visit(const ir::Accumulate& n) override {
+    if (report_.at(n.id).kind != SearchFact::Kind::Neighbours) return;
+    found = true;
+    over_other_set |= st_.labels[n.label].set != st_.set;
+  }
+
+ private:
+  const NeighbourhoodReport& report_;
+  const ir::Statement& st_;
+};
+}  // namespace
+
+void check_schedule(const ir::Model& model, const NeighbourhoodReport& neighbourhoods) {
+  std::vector<Diagnostic> errors;
+  for (const ir::Stage& stage : model.stages)
+    for (const ir::Statement& st : stage.statements) {
+      if (st.schedule.loc.end == 0) continue;
+      NeighbourhoodSums sums(neighbourhoods, st);
+      sums.visit(st.value);
+      if (!sums.found)
+        errors.push_back({st.schedule.loc,
+                          "statement '" + st.name + "' has no neighbourhood sum to schedule",
+                          "search and skin apply to sums whose condition bounds |dx|, "
+                          "like sum(j, |dx| < rc, ...)"});
+      else if (st.schedule.skin && sums.over_other_set)
+        errors.push_back({st.schedule.loc,
+                          "a skin (Verlet lists) needs the sums of '" + st.name +
+                              "' to run over its own particle set",
+                          "lists are kept per particle of one set; schedule the search instead"});
+      else if (st.schedule.skin && st.schedule.search != ir::SearchChoice::Auto)
+        errors.push_back({st.schedule.loc,
+                          "statement '" + st.name + "' has both a skin and a search",
+                          "Verlet lists are built with the automatic search; drop one"});
+    }
+  if (!errors.empty()) throw CompileError(errors);
+}
+
+}  // namespace partc

@@ -1,0 +1,57 @@
+// Every search structure a schedule can choose gives the same sums
+// (tests/e2e/search_choices.part), checked against a brute-force loop over
+// all pairs written here, while the particles move and Verlet lists are
+// reused and rebuilt.
+#include <catch2/catch.hpp>
+
+#include "reference.hpp"
+#include "search_choices.hpp"
+
+namespace {
+
+using reference::Vec2;
+using Model = SearchChoices;
+
+// The force of the model, from positions by id, periodic in x only.
+std::vector<Vec2> reference_force(const std::vector<Vec2>& p, double r) {
+  std::vector<Vec2> f(p.size(), Vec2{0, 0});
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      Vec2 d{p[j][0] - p[i][0], p[j][1] - p[i][1]};
+      d[0] -= std::round(d[0]);  // periodic in x, box length 1
+      const double s = reference::norm(d);
+      if (s < r && s > 0)
+        for (int k = 0; k < 2; ++k) f[i][k] += -(1 - s / r) * d[k] / s;
+    }
+  return f;
+}
+
+double worst(const std::vector<partc::Vec<2>>& got, const std::vector<Vec2>& want) {
+  double w = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    w = std::max(w, reference::norm({got[i][0] - want[i][0], got[i][1] - want[i][1]}));
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with brute force",
+          "[e2e][search]") {
+  Model model;
+  model.set_seed(9);
+  model.init();
+  for (int step = 0; step < 12; ++step) {
+    const auto before = reference::positions_by_id(model.P());
+    model.step();  // forces at `before`, then the particles move
+    const auto want = reference_force(before, model.params().r);
+    double scale = 0;
+    for (const Vec2& f : want) scale = std::max(scale, reference::norm(f));
+    REQUIRE(scale > 0);
+    INFO("step " << step);
+    CHECK(worst(reference::values_by_id<Model::P_f_auto>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_f_brute>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_f_cells>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_f_tree>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_f_lists>(model.P()), want) <= 1e-12 * scale);
+  }
+}

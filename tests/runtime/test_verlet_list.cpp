@@ -1,0 +1,459 @@
+// VerletList against an O(N^2) reference over the current positions, step after
+// step of motion: the same j for every i, each once, with the same dx; and its
+// rebuild rule, probed just under and just over half the skin, with the worst
+// case of two particles approaching each other.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "partc/domain.hpp"
+#include "partc/particle_set.hpp"
+#include "partc/vec.hpp"
+#include "partc/verlet_list.hpp"
+
+using partc::Domain;
+using partc::Vec;
+using partc::VerletList;
+
+namespace {
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+template <int D>
+using Set = partc::ParticleSet<D>;
+
+enum class Periodicity { none, all, mixed };
+
+// Box [-1 - k/4, 1 + k/2) in dimension k: lengths 2, 2.75, 3.5.
+template <int D>
+Domain<D> make_domain(Periodicity periodicity) {
+  Domain<D> d{};
+  for (int k = 0; k < D; ++k) {
+    d.lo[k] = -1.0 - 0.25 * k;
+    d.hi[k] = d.lo[k] + 2.0 + 0.75 * k;
+    d.periodic[k] = periodicity == Periodicity::all || (periodicity == Periodicity::mixed && k % 2 == 0);
+  }
+  return d;
+}
+
+template <int D>
+Domain<D> unit_box(bool periodic) {
+  Domain<D> d{};
+  for (int k = 0; k < D; ++k) {
+    d.lo[k] = 0.0;
+    d.hi[k] = 1.0;
+    d.periodic[k] = periodic;
+  }
+  return d;
+}
+
+template <int D>
+std::string show(const Vec<D>& v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(";
+  for (int k = 0; k < D; ++k) s << (k ? ", " : "") << v[k];
+  return s.str() + ")";
+}
+
+// Independent of Domain::minimum_image: subtract the nearest whole number of boxes.
+template <int D>
+Vec<D> reference_image(const Domain<D>& domain, Vec<D> d) {
+  for (int k = 0; k < D; ++k) {
+    const double L = domain.hi[k] - domain.lo[k];
+    if (domain.periodic[k]) d[k] -= L * std::nearbyint(d[k] / L);
+  }
+  return d;
+}
+
+// Every query for_each_near(i) against all pairs of `positions` (the set as it is
+// now); returns a description of each disagreement. Pairs within rounding of the
+// radius may go either way, as in test_search.cpp.
+template <int D>
+std::vector<std::string> disagreements(const VerletList<D>& list, const Domain<D>& domain,
+                                       double radius, const std::vector<Vec<D>>& positions) {
+  double magnitude = 1.0;
+  for (int k = 0; k < D; ++k)
+    magnitude = std::max({magnitude, std::abs(domain.lo[k]), std::abs(domain.hi[k])});
+  for (const auto& p : positions)
+    for (int k = 0; k < D; ++k) magnitude = std::max(magnitude, std::abs(p[k]));
+  const double tol = 64 * eps * magnitude;
+  const double too_far = radius * (1 + 1e-12) + D * tol;
+  const double must_find_squared =
+      std::max(radius * radius, radius * radius * (1 + 1e-12) - 2 * radius * D * tol);
+
+  std::vector<std::string> errors;
+  const std::size_t n = positions.size();
+  std::vector<int> hits(n);
+  std::vector<Vec<D>> found(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto where = [&](std::size_t j) {
+      return "i " + std::to_string(i) + " " + show(positions[i]) + ", j " + std::to_string(j) +
+             (j < n ? " " + show(positions[j]) : std::string()) + ": ";
+    };
+    std::fill(hits.begin(), hits.end(), 0);
+    list.for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
+      if (j >= n) {
+        errors.push_back(where(j) + "index out of range");
+        return;
+      }
+      ++hits[j];
+      found[j] = dx;
+    });
+    for (std::size_t j = 0; j < n; ++j) {
+      const Vec<D> ref = reference_image(domain, positions[j] - positions[i]);
+      if (hits[j] == 0) {
+        if (squared_norm(ref) <= must_find_squared)
+          errors.push_back(where(j) + "missed, dx " + show(ref));
+        continue;
+      }
+      if (hits[j] > 1) errors.push_back(where(j) + "reported " + std::to_string(hits[j]) + " times");
+      if (!(norm(ref) <= too_far)) errors.push_back(where(j) + "too far, dx " + show(ref));
+      for (int k = 0; k < D; ++k) {
+        if (std::abs(found[j][k] - ref[k]) <= tol) continue;
+        // A component of exactly half a box has two shortest images; either will do.
+        const double half = 0.5 * (domain.hi[k] - domain.lo[k]);
+        if (domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= tol &&
+            std::abs(found[j][k] + ref[k]) <= tol)
+          continue;
+        errors.push_back(where(j) + "dx " + show(found[j]) + ", expected " + show(ref));
+        break;
+      }
+    }
+  }
+  return errors;
+}
+
+template <int D>
+void check_exact(const VerletList<D>& list, const Domain<D>& domain, double radius,
+                 const Set<D>& set) {
+  const std::vector<std::string> errors = disagreements(list, domain, radius, set.positions());
+  std::string first;
+  for (std::size_t e = 0; e < std::min<std::size_t>(errors.size(), 5); ++e)
+    first += "\n  " + errors[e];
+  INFO(errors.size() << " disagreements" << first);
+  CHECK(errors.empty());
+}
+
+template <int D>
+std::size_t index_of_id(const Set<D>& set, std::int64_t id) {
+  const auto& ids = set.ids();
+  return static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+}
+
+// The j reported for particle i, as ids.
+template <int D>
+std::vector<std::int64_t> near_ids(const VerletList<D>& list, const Set<D>& set, std::size_t i) {
+  std::vector<std::int64_t> ids;
+  list.for_each_near(i, [&](std::size_t j, const Vec<D>&) { ids.push_back(set.ids()[j]); });
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+template <int D>
+Set<D> random_set(const Domain<D>& domain, std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Set<D> set;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec<D> p;
+    for (int k = 0; k < D; ++k) p[k] = domain.lo[k] + (domain.hi[k] - domain.lo[k]) * unit(rng);
+    set.push_back(p);
+  }
+  return set;
+}
+
+const char* periodicity_name(Periodicity p) {
+  return p == Periodicity::none ? "non-periodic" : p == Periodicity::all ? "periodic" : "mixed";
+}
+
+}  // namespace
+
+template <int D>
+using Dim = std::integral_constant<int, D>;
+#define PARTC_VERLET_DIMS Dim<1>, Dim<2>, Dim<3>
+
+TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion", "[verlet]",
+                   PARTC_VERLET_DIMS) {
+  constexpr int D = TestType::value;
+  struct Params {
+    std::size_t n;
+    double radius, skin;
+  };
+  // Box lengths 2 to 3.5. Small reach: NeighbourSearch takes its cell list; reach
+  // beyond half the shortest box (1.1, 1.7), then beyond a whole box (3.5, with
+  // radius 3 > L/2 itself): brute force, and minimum images matter.
+  const Params cases[] = {{150, 0.2, 0.1}, {60, 0.7, 0.4}, {60, 1.2, 0.5}, {30, 3.0, 0.5}};
+  std::uint64_t seed = 100 * D;
+  for (Periodicity periodicity : {Periodicity::none, Periodicity::all, Periodicity::mixed}) {
+    for (const Params& c : cases) {
+      INFO(periodicity_name(periodicity) << ", D = " << D << ", N = " << c.n << ", radius "
+                                         << c.radius << ", skin " << c.skin);
+      const Domain<D> domain = make_domain<D>(periodicity);
+      std::mt19937_64 rng(++seed);
+      Set<D> set = random_set(domain, c.n, rng);
+      VerletList<D> list(c.skin);
+      // Per component: a random walk the skin outlasts for a few steps at a time.
+      std::uniform_real_distribution<double> step(-0.1 * c.skin, 0.1 * c.skin);
+      const int steps = 40;
+      std::size_t rebuilds = 0;
+      for (int s = 0; s < steps; ++s) {
+        INFO("step " << s);
+        const std::vector<std::int64_t> ids_before = set.ids();
+        const bool rebuilt = list.update(domain, c.radius, set);
+        rebuilds += rebuilt;
+        CHECK(list.rebuild_count() == rebuilds);
+        if (!rebuilt) CHECK(set.ids() == ids_before);  // only a rebuild may reorder
+        check_exact(list, domain, c.radius, set);
+        for (auto& p : set.positions()) {
+          for (int k = 0; k < D; ++k) p[k] += step(rng);
+          p = domain.wrap(p);  // as generated code does after a move
+        }
+      }
+      // Both kinds of step happened: lists were reused and rebuilt.
+      CHECK(rebuilds >= 2);
+      CHECK(rebuilds <= steps / 2);
+    }
+  }
+}
+
+TEST_CASE("a move just under half the skin keeps the lists, just over rebuilds", "[verlet]") {
+  // One particle moves diagonally (so only the Euclidean norm of the displacement
+  // decides) from near the hi corner, across the periodic edges: it is wrapped,
+  // and the minimum image must see through that.
+  const Domain<3> domain = unit_box<3>(true);
+  const double radius = 0.2, skin = 0.1;
+  std::mt19937_64 rng(7);
+  Set<3> set = random_set(domain, 300, rng);
+  const std::int64_t mover = set.ids()[0];
+  set.positions()[0] = Vec<3>::filled(0.99);
+
+  VerletList<3> list(skin);
+  REQUIRE(list.update(domain, radius, set));
+  REQUIRE(list.rebuild_count() == 1);
+  CHECK(list.skin() == skin);
+  const Vec<3> start = set.positions()[index_of_id(set, mover)];
+  const Vec<3> direction = Vec<3>::filled(1.0 / std::sqrt(3.0));
+  const auto move_to = [&](double distance) {
+    set.positions()[index_of_id(set, mover)] = domain.wrap(start + direction * distance);
+  };
+
+  move_to(0.5 * skin * (1 - 1e-9));
+  REQUIRE(set.positions()[index_of_id(set, mover)][0] < 0.1);  // it did cross the edge
+  CHECK_FALSE(list.update(domain, radius, set));
+  CHECK(list.rebuild_count() == 1);
+  check_exact(list, domain, radius, set);
+
+  move_to(0.5 * skin * (1 + 1e-9));
+  CHECK(list.update(domain, radius, set));
+  CHECK(list.rebuild_count() == 2);
+  check_exact(list, domain, radius, set);
+
+  // Measured from the last build: back to start is a move of just over skin/2 again.
+  move_to(0.0);
+  CHECK(list.update(domain, radius, set));
+  CHECK(list.rebuild_count() == 3);
+  // And an unchanged set never rebuilds.
+  CHECK_FALSE(list.update(domain, radius, set));
+  CHECK(list.rebuild_count() == 3);
+}
+
+TEMPLATE_TEST_CASE("two particles approaching each other by just under half the skin are found",
+                   "[verlet]", PARTC_VERLET_DIMS) {
+  constexpr int D = TestType::value;
+  const double radius = 0.1, skin = 0.04;
+  const double start_distance = radius + skin * (1 - 2e-9);  // outside radius, inside the list
+  const double approach = 0.5 * skin * (1 - 1e-9);           // each; ends at radius - 1e-9 skin
+  for (bool periodic : {false, true}) {
+    INFO((periodic ? "periodic, across the edge" : "non-periodic") << ", D = " << D);
+    const Domain<D> domain = unit_box<D>(periodic);
+    std::mt19937_64 rng(11 + D);
+    Set<D> set = random_set(domain, 200, rng);  // others: enough for the cell-list path
+    Vec<D> a = Vec<D>::filled(0.5), b = a;
+    // Periodic: a just above lo, b just below hi, facing each other across the edge.
+    a[0] = periodic ? 0.01 : 0.45;
+    b[0] = periodic ? 1.0 - (start_distance - 0.01) : 0.45 + start_distance;
+    const double toward_b = periodic ? -1.0 : 1.0;
+    const std::int64_t id_a = set.ids()[set.push_back(a)];
+    const std::int64_t id_b = set.ids()[set.push_back(b)];
+
+    VerletList<D> list(skin);
+    list.update(domain, radius, set);
+    const auto b_near_a = [&] {
+      const std::vector<std::int64_t> ids = near_ids(list, set, index_of_id(set, id_a));
+      return std::binary_search(ids.begin(), ids.end(), id_b);
+    };
+    REQUIRE_FALSE(b_near_a());
+
+    Vec<D> step{};
+    step[0] = toward_b * approach;
+    set.positions()[index_of_id(set, id_a)] = domain.wrap(a + step);
+    set.positions()[index_of_id(set, id_b)] = domain.wrap(b - step);
+    CHECK_FALSE(list.update(domain, radius, set));
+    CHECK(list.rebuild_count() == 1);
+    CHECK(b_near_a());
+    check_exact(list, domain, radius, set);
+  }
+}
+
+TEST_CASE("pairs on the boundary of the radius across a periodic edge are all found", "[verlet]") {
+  // Skin 0 leaves no slack: the build (cell list: shifted query images) and the
+  // query (minimum image of the difference) round differently, so without the
+  // header's round-off guard some of these pairs, a few ulps either side of the
+  // contract's |dx|^2 = radius^2 (1 + 1e-12), would be lost. Checked here with no
+  // tolerance, dx as the contract defines it.
+  const double L = std::cbrt(32000 / 0.8442);  // the LJ benchmark's box
+  const Domain<1> domain{{{0.0}}, {{L}}, {{true}}};
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 3; ++trial) {
+    const double radius = 2.5 * (1 + 0.1 * unit(rng));
+    Set<1> set = random_set(domain, 200, rng);  // enough for the cell-list path
+    for (int pair = 0; pair < 20; ++pair) {
+      const double xi = 0.5 * radius * unit(rng);
+      double xj = xi - radius * std::sqrt(1 + 1e-12) + L;
+      for (int ulp = 0; ulp < 40; ++ulp) xj = std::nextafter(xj, 0.0);
+      for (int ulp = 0; ulp < 80; ++ulp, xj = std::nextafter(xj, L)) {
+        set.push_back(Vec<1>{{xi}});
+        set.push_back(Vec<1>{{xj}});
+      }
+    }
+    VerletList<1> list(0.0);
+    list.update(domain, radius, set);
+    const auto& p = set.positions();
+    std::size_t missed = 0;
+    std::vector<char> hit(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      std::fill(hit.begin(), hit.end(), 0);
+      list.for_each_near(i, [&](std::size_t j, const Vec<1>&) { hit[j] = 1; });
+      for (std::size_t j = 0; j < p.size(); ++j)
+        missed += !hit[j] && squared_norm(domain.minimum_image(p[j] - p[i])) <=
+                                 radius * radius * (1 + 1e-12);
+    }
+    CHECK(missed == 0);
+    CHECK_FALSE(list.update(domain, radius, set));  // skin 0: nothing moved, no rebuild
+  }
+}
+
+TEST_CASE("empty and one-particle sets; a change of count rebuilds", "[verlet]") {
+  const Domain<2> domain = unit_box<2>(true);
+  Set<2> set;
+  VerletList<2> list(0.1);
+  CHECK(list.update(domain, 0.2, set));
+  CHECK_FALSE(list.update(domain, 0.2, set));
+  CHECK(list.pair_count() == 0);
+
+  set.push_back(Vec<2>{{0.3, 0.4}});
+  CHECK(list.update(domain, 0.2, set));
+  CHECK(list.pair_count() == 1);  // itself
+  std::vector<std::size_t> js;
+  list.for_each_near(0, [&](std::size_t j, const Vec<2>& dx) {
+    js.push_back(j);
+    CHECK(dx == Vec<2>::zero());
+  });
+  CHECK(js == std::vector<std::size_t>{0});
+  CHECK_FALSE(list.update(domain, 0.2, set));
+
+  set.push_back(Vec<2>{{0.35, 0.4}});
+  CHECK(list.update(domain, 0.2, set));
+  CHECK(list.pair_count() == 4);
+  check_exact(list, domain, 0.2, set);
+
+  set.alive()[0] = 0;
+  set.erase_dead();
+  CHECK(list.update(domain, 0.2, set));
+  CHECK(list.pair_count() == 1);
+  check_exact(list, domain, 0.2, set);
+  CHECK(list.rebuild_count() == 4);
+}
+
+TEST_CASE("a change of radius or domain rebuilds", "[verlet]") {
+  Domain<2> domain = unit_box<2>(true);
+  std::mt19937_64 rng(3);
+  Set<2> set = random_set(domain, 100, rng);
+  VerletList<2> list(0.05);
+  CHECK(list.update(domain, 0.2, set));
+  const std::size_t pairs = list.pair_count();
+  CHECK(list.update(domain, 0.1, set));
+  CHECK(list.pair_count() < pairs);
+  check_exact(list, domain, 0.1, set);
+  CHECK_FALSE(list.update(domain, 0.1, set));
+  CHECK(list.update(domain, 0.2, set));  // back again
+  CHECK(list.pair_count() == pairs);
+
+  domain.periodic[1] = false;
+  CHECK(list.update(domain, 0.2, set));
+  check_exact(list, domain, 0.2, set);
+  domain.hi[0] = 1.5;  // the particles stay where they are, the box grows
+  CHECK(list.update(domain, 0.2, set));
+  check_exact(list, domain, 0.2, set);
+  CHECK_FALSE(list.update(domain, 0.2, set));
+  CHECK(list.rebuild_count() == 5);
+}
+
+TEST_CASE("reordering the set outside update is safe", "[verlet]") {
+  // Positions are tracked by index: a permutation moves most slots far (a
+  // rebuild), while swapping two particles closer than skin/2 needs none.
+  const Domain<2> domain = unit_box<2>(true);
+  std::mt19937_64 rng(5);
+  Set<2> set = random_set(domain, 200, rng);
+  set.push_back(Vec<2>{{0.5, 0.5}});
+  set.push_back(Vec<2>{{0.5, 0.5 + 0.01}});
+  VerletList<2> list(0.05);
+  list.update(domain, 0.15, set);
+
+  std::vector<std::size_t> order(set.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t a = index_of_id(set, 200), b = index_of_id(set, 201);
+  std::swap(order[a], order[b]);
+  set.permute(order);
+  CHECK_FALSE(list.update(domain, 0.15, set));
+  check_exact(list, domain, 0.15, set);
+
+  std::shuffle(order.begin(), order.end(), rng);
+  set.permute(order);
+  CHECK(list.update(domain, 0.15, set));
+  check_exact(list, domain, 0.15, set);
+}
+
+TEST_CASE("NaN positions rebuild and are never reported", "[verlet]") {
+  const Domain<2> domain = unit_box<2>(true);
+  std::mt19937_64 rng(9);
+  Set<2> set = random_set(domain, 50, rng);
+  VerletList<2> list(0.05);
+  list.update(domain, 0.2, set);
+  set.positions()[7][1] = std::numeric_limits<double>::quiet_NaN();
+  CHECK(list.update(domain, 0.2, set));
+  CHECK(list.update(domain, 0.2, set));  // NaN never counts as "not moved"
+  for (std::size_t i = 0; i < set.size(); ++i)
+    list.for_each_near(i, [&](std::size_t j, const Vec<2>& dx) {
+      CHECK(is_finite(set.positions()[j]));
+      CHECK(is_finite(dx));
+    });
+}
+
+TEST_CASE("a bad skin or radius is rejected", "[verlet]") {
+  for (double skin : {-0.1, std::numeric_limits<double>::quiet_NaN(),
+                      std::numeric_limits<double>::infinity()}) {
+    INFO("skin " << skin);
+    CHECK_THROWS_AS(VerletList<2>(skin), std::invalid_argument);
+  }
+  const Domain<2> domain = unit_box<2>(true);
+  Set<2> set;
+  set.push_back(Vec<2>{{0.5, 0.5}});
+  VerletList<2> list(0.3);
+  // radius + skin would be positive: the radius itself is checked.
+  for (double radius : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN()}) {
+    INFO("radius " << radius);
+    CHECK_THROWS_WITH(list.update(domain, radius, set), Catch::Contains("radius must be positive"));
+  }
+  CHECK(list.rebuild_count() == 0);
+}
