@@ -6,12 +6,17 @@
 // every pair (literals, params, consts) makes the sum a neighbourhood sum:
 //   |dx| < r, |dx| <= r, r > |dx|, r >= |dx|      (norm(dx) likewise)
 //   dot(dx, dx) < r2 (and the other spellings)   -> radius sqrt(r2)
-// With several such terms the smallest bound wins. Anything else (no
-// condition, a bound under `or`, a bound that reads particle variables) is
-// dense: every particle j is visited. The search structure that serves a
+// With several such terms the smallest bound wins. A bound that reads
+// particle variables (DEM's |dx| < r[i] + r[j]) also makes a neighbourhood
+// sum when it is a sum of terms that each read one particle's variables: the
+// search is then sized by the sum of each term's largest value. Anything else
+// (no condition, a bound under `or`, r[i] * r[j]) is dense: every particle j
+// is visited. The search structure that serves a
 // neighbourhood sum is chosen at run time (brute force for few particles,
 // a cell list otherwise) by runtime/partc/neighbour_search.hpp.
 #include "analysis/neighbourhood.hpp"
+
+#include <set>
 
 #include "ir/visitor.hpp"
 #include "ir/constant.hpp"
@@ -44,6 +49,43 @@ void split_conjunction(const Expr& e, std::vector<Expr>& terms) {
   }
 }
 
+// Which labels an expression reads particles through, and whether it holds
+// something no largest value over particles can bound (dx, random, sums).
+class ParticleReads : public ir::Visitor {
+ public:
+  std::set<int> labels;
+  bool unboundable = false;
+  using ir::Visitor::visit;
+
+ protected:
+  void visit(const ir::VarRef& n) override { labels.insert(n.label); }
+  void visit(const ir::Dx&) override { unboundable = true; }
+  void visit(const ir::Random&) override { unboundable = true; }
+  void visit(const ir::Accumulate&) override { unboundable = true; }
+};
+
+void split_sum(const Expr& e, std::vector<Expr>& terms) {
+  auto b = ir::as<ir::Binary>(e);
+  if (b && b->op == ir::BinaryOp::Add) {
+    split_sum(b->lhs, terms);
+    split_sum(b->rhs, terms);
+  } else {
+    terms.push_back(e);
+  }
+}
+
+// The terms a per-particle bound splits into, or none if it does not split.
+std::vector<Expr> per_particle_terms(const Expr& limit) {
+  std::vector<Expr> terms;
+  split_sum(limit, terms);
+  for (const Expr& t : terms) {
+    ParticleReads reads;
+    reads.visit(t);
+    if (reads.unboundable || reads.labels.size() > 1) return {};
+  }
+  return terms;
+}
+
 // The upper bound on |dx| a term states, or null.
 Expr bound_of(const Expr& term) {
   auto b = ir::as<ir::Binary>(term);
@@ -56,7 +98,7 @@ Expr bound_of(const Expr& term) {
   } else {
     return nullptr;
   }
-  if (!is_uniform(limit)) return nullptr;
+  if (!is_uniform(limit) && per_particle_terms(limit).empty()) return nullptr;
   if (is_norm_of_dx(measured)) return limit;
   if (is_squared_norm_of_dx(measured))
     return std::make_shared<ir::Call>(ir::Type::Real, ir::Function::Sqrt,
@@ -68,8 +110,6 @@ class AccumulationFinder : public ir::Visitor {
  public:
   AccumulationFinder(NeighbourhoodReport& report, const std::string& source)
       : report_(report), source_(source) {}
-
- public:
   using ir::Visitor::visit;
 
  protected:
@@ -77,20 +117,34 @@ class AccumulationFinder : public ir::Visitor {
     SearchFact fact;
     std::vector<Expr> terms;
     if (acc.condition) split_conjunction(acc.condition, terms);
+    Expr per_particle;  // the first bound that varies per particle
     for (const Expr& term : terms) {
       Expr bound = bound_of(term);
       if (!bound) continue;
+      if (!is_uniform(bound)) {
+        if (!per_particle) per_particle = bound;
+        continue;
+      }
       fact.radius = fact.radius ? std::make_shared<ir::Call>(
                                       ir::Type::Real, ir::Function::Min,
                                       std::vector<Expr>{fact.radius, bound}, bound->loc)
                                 : bound;
     }
+    // A uniform bound is exact and cheaper than any per-particle maximum.
     if (fact.radius) {
+      fact.radius_terms = {fact.radius};
+    } else if (per_particle) {
+      fact.radius = per_particle;
+      fact.radius_terms = per_particle_terms(per_particle);
+    }
+    if (fact.radius) {
+      const std::string text = source_.substr(fact.radius->loc.begin,
+                                              fact.radius->loc.end - fact.radius->loc.begin);
       fact.kind = SearchFact::Kind::Neighbours;
-      fact.reason = "the condition bounds |dx| by " +
-                    source_.substr(fact.radius->loc.begin,
-                                   fact.radius->loc.end - fact.radius->loc.begin) +
-                    ": spatial search with that radius";
+      fact.reason = is_uniform(fact.radius)
+                        ? "the condition bounds |dx| by " + text + ": spatial search with that radius"
+                        : "the condition bounds |dx| by " + text +
+                              ": spatial search sized by its largest value over the particles";
     } else {
       fact.reason = acc.condition
                         ? "no upper bound on |dx| shared by all pairs in the condition: dense loop"

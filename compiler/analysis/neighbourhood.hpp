@@ -3,6 +3,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "ir/ir.hpp"
 
@@ -14,7 +15,11 @@ struct SearchFact {
     Neighbours  // only particles within `radius`: a spatial search
   };
   Kind kind = Kind::Dense;
-  ir::Expr radius;  // Neighbours: an upper bound on |dx|, uniform over particles
+  ir::Expr radius;  // Neighbours: the upper bound on |dx| the condition states
+  // The search radius is the sum of these terms' largest values over the
+  // particles each reads (a uniform term is its own largest value): r[i] +
+  // r[j] gives max r + max r. One uniform term when the bound is uniform.
+  std::vector<ir::Expr> radius_terms;
   std::string reason;
 };
 

@@ -35,6 +35,7 @@ using codegen::NameTable;
 class StatementUses : public Visitor {
  public:
   std::set<std::pair<int, int>> arrays;  // (set, var) read
+  std::vector<int> labels;               // through these labels, in order of reading
   std::vector<const Accumulate*> accumulations;
   bool random = false;
 
@@ -42,7 +43,10 @@ class StatementUses : public Visitor {
   using Visitor::visit;
 
  protected:
-  void visit(const VarRef& n) override { arrays.insert({n.set, n.var}); }
+  void visit(const VarRef& n) override {
+    arrays.insert({n.set, n.var});
+    labels.push_back(n.label);
+  }
   void visit(const Random&) override { random = true; }
   void visit(const Accumulate& n) override {
     accumulations.push_back(&n);
@@ -580,7 +584,7 @@ class ModelEmitter {
       const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
       if (fact.kind != SearchFact::Kind::Neighbours) continue;
       auto& list = radii[st.labels[acc->label].set];
-      const std::string radius = expression(fact.radius, names);
+      const std::string radius = radius_expression(fact, st, names);
       if (std::find(list.begin(), list.end(), radius) == list.end()) list.push_back(radius);
     }
     for (const auto& [s, list] : radii) {
@@ -637,6 +641,32 @@ class ModelEmitter {
     linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
     linef("{}radius_ = {};", search, local);
     line("}");
+  }
+
+  // The search radius: the bound itself when it is uniform, else the sum of
+  // each term's largest value over the particles it reads (max r + max r for
+  // r[i] + r[j]), kept positive so coincident particles are still found.
+  std::string radius_expression(const SearchFact& fact, const Statement& st,
+                                const ExpressionNames& names) const {
+    if (fact.radius_terms.size() == 1 && is_uniform(fact.radius_terms.front()))
+      return expression(fact.radius_terms.front(), names);
+    std::vector<std::string> parts;
+    for (const Expr& term : fact.radius_terms) {
+      StatementUses reads;
+      reads.visit(term);
+      if (reads.arrays.empty()) {
+        parts.push_back(expression(term, names));
+        continue;
+      }
+      const int label = reads.labels.front();
+      const int set = st.labels[label].set;
+      ExpressionNames over_k = names;
+      over_k.labels[label] = "k";
+      over_k.array = [this](int s, int var) { return array_access(s, var); };
+      parts.push_back(fmt::format("partc::max_over({}.size(), [&](std::size_t k) {{ return {}; }})",
+                                  set_member_[set], expression(term, over_k)));
+    }
+    return fmt::format("std::max({}, std::numeric_limits<double>::min())", fmt::join(parts, " + "));
   }
 
   // Verlet lists: reused while no particle has moved half the skin since

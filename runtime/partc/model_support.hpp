@@ -1,6 +1,7 @@
 // partc/model_support.hpp: small pieces every generated model uses.
 //
 // - ParamInfo / parse_param: parameters as text, for --set and --help.
+// - max_over: the largest value over a set's particles.
 // - load_set: a particle set from a CSV table, with the model's declared
 //   initial values for the variables the table lacks, and positions wrapped
 //   into the periodic domain.
@@ -9,6 +10,7 @@
 // bools are true/false/1/0.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <string>
@@ -43,6 +45,16 @@ T parse_param(const std::string& name, const std::string& text) {
                        "'");
     return value;
   }
+}
+
+// The largest value(n) over k < n, or 0 with no particles: sizes a search
+// whose bound varies per particle (|dx| < r[i] + r[j]).
+template <class Value>
+double max_over(std::size_t n, Value&& value) {
+  if (n == 0) return 0.0;
+  double largest = value(std::size_t{0});
+  for (std::size_t k = 1; k < n; ++k) largest = std::max(largest, static_cast<double>(value(k)));
+  return largest;
 }
 
 // Replaces the particles of `set` with the table's (see partc::load_set in

@@ -42,11 +42,24 @@ TEST_CASE("neighbourhood: upper bounds on |dx| become search radii", "[analysis]
   CHECK(search_of("u[i] = sum(j, |dx| < r and |dx| < 0.05, w[j])") == "min(r, 0.05)");
 }
 
+TEST_CASE("neighbourhood: per-particle bounds are sized by their largest terms", "[analysis]") {
+  const partc::Compilation c =
+      compile("u[i] = sum(j, |dx| < w[i] + w[j] + r and |dx| > 0, w[j])");
+  const partc::SearchFact& fact = c.facts.neighbourhoods.at(0);
+  REQUIRE(fact.kind == partc::SearchFact::Kind::Neighbours);
+  std::vector<std::string> terms;
+  for (const auto& t : fact.radius_terms)
+    terms.push_back(partc::ir::to_string(t, c.model, c.model.stages[0].statements[0].labels));
+  CHECK(terms == std::vector<std::string>{"w[i]", "w[j]", "r"});
+  // A uniform bound beside a per-particle one: the uniform one sizes the search.
+  CHECK(search_of("u[i] = sum(j, |dx| < w[i] + w[j] and |dx| < r, w[j])") == "r");
+}
+
 TEST_CASE("neighbourhood: anything else is dense", "[analysis]") {
   CHECK(search_of("u[i] = sum(j, w[j])") == "dense");
   CHECK(search_of("u[i] = sum(j, |dx| > r, w[j])") == "dense");              // a lower bound
   CHECK(search_of("u[i] = sum(j, |dx| < r or w[j] > 0, w[j])") == "dense");  // under `or`
-  CHECK(search_of("u[i] = sum(j, |dx| < w[i], w[j])") == "dense");  // varies per particle
+  CHECK(search_of("u[i] = sum(j, |dx| < w[i] * w[j], w[j])") == "dense");  // no per-particle split
 }
 
 TEST_CASE("aliasing: reading another particle's copy of the target buffers", "[analysis]") {
