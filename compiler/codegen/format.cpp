@@ -14,6 +14,7 @@ std::string format_cpp(const std::string& code, const std::string& file_name) {
   style.AllowShortFunctionsOnASingleLine = clang::format::FormatStyle::SFS_Inline;
   style.FixNamespaceComments = true;
   style.DerivePointerAlignment = false;
+  style.ReflowComments = false;  // the emitter wraps its comments; reflowing would merge them
   style.PointerAlignment = clang::format::FormatStyle::PAS_Left;
   const std::vector<clang::tooling::Range> whole{
       clang::tooling::Range(0, static_cast<unsigned>(code.size()))};

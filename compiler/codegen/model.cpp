@@ -143,6 +143,24 @@ class ModelEmitter {
  private:
   // ---- output -----------------------------------------------------------
 
+  // A comment, wrapped by words at 96 columns; continuation lines indented.
+  void comment(const std::string& text) {
+    std::string current = "//";
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find(' ', start);
+      if (end == std::string::npos) end = text.size();
+      const std::string word = text.substr(start, end - start);
+      if (current.size() + 1 + word.size() > 96 && current.size() > 4) {
+        line(current);
+        current = "//  ";
+      }
+      current += " " + word;
+      start = end + 1;
+    }
+    line(current);
+  }
+
   void line(const std::string& text) {
     out_ += text;
     out_ += '\n';
@@ -572,9 +590,9 @@ class ModelEmitter {
     linef("// {}", source_line(st.loc));
     linef("//   {}", source_text(st.loc));
     for (const Accumulate* acc : uses.accumulations)
-      linef("// {}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
-            facts_.neighbourhoods.at(acc->id).reason);
-    linef("// {}", k.alias->reason);
+      comment(fmt::format("{}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
+            facts_.neighbourhoods.at(acc->id).reason));
+    comment(k.alias->reason);
     linef("void {}() {{", k.name);
 
     // Bring every search this statement needs up to date before any index
