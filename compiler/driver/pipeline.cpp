@@ -64,10 +64,12 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         else if (st.schedule.search != ir::SearchChoice::Auto)
           out += std::string("    schedule: always ") + ir::search_choice_name(st.schedule.search) + "\n";
         else
-          out += "    at run time: brute force when a cell list would save each query fewer than "
-                 "partc::NeighbourSearch::default_margin pair tests (few particles, or a radius "
-                 "near the box size), else an ordered cell list; rebuilt only after positions "
-                 "change\n";
+          out += "    at run time, from the data: brute force when a cell list would save each query "
+                 "fewer than partc::NeighbourSearch::default_margin pair tests (few particles, or "
+                 "a radius near the box size); a k-d tree when the particles are so clustered that "
+                 "a cell list's queries would examine more than "
+                 "NeighbourSearch::kd_tree_above_examined points; else an ordered cell list. "
+                 "Rebuilt only after positions change. Override with a schedule.\n";
       }
     }
   }
