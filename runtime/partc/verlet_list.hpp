@@ -1,13 +1,16 @@
 // partc/verlet_list.hpp: VerletList<D>, neighbour lists reused across steps
 // (molecular dynamics with a skin). update builds, for every particle, the list
 // of particles within radius + skin (with NeighbourSearch), and rebuilds only
-// when that list could have become incomplete; for_each_near filters a list
-// with the current distances.
+// when that list could have become incomplete; for_each_near filters the list
+// of one particle with the current distances.
 //
 // Query contract: as BruteForce (brute_force.hpp), but asked by particle index:
 // for_each_near(i, f) calls f(j, dx) exactly once for each particle j with
-// |dx|^2 <= radius^2 * (1 + 1e-12), dx = domain.minimum_image(p[j] - p[i]) for
-// the positions of the last update; j == i is included (dx = 0).
+// |dx|^2 <= radius^2 * (1 + 1e-12), dx the minimum image of p[j] - p[i] for the
+// positions of the last update (wrapped first, as BruteForce does: for positions
+// in the box, as generated code keeps them, domain.minimum_image(p[j] - p[i])
+// bit for bit); j == i is included (dx = 0). Lists are in a fixed order between
+// rebuilds, so per-particle sums do not depend on how queries are scheduled.
 //
 // Invariant (why a list stays complete): the minimum-image distance is the
 // distance on the torus, so it obeys the triangle inequality. If particles i and
@@ -30,15 +33,18 @@
 //   above holds slot by slot, so whatever reorders or replaces particles without
 //   changing their number is safe (a slot whose position jumped makes update
 //   rebuild). Crossing a periodic edge (and being wrapped) is no displacement.
-// - Any radius + skin works, also beyond half a periodic box: each list holds j
-//   once (NeighbourSearch's contract, for any radius) and dx is recomputed as the
-//   shortest image at every query; the triangle inequality above needs no bound.
+// - Any radius + skin works, also beyond half (or all) of a periodic box: each
+//   list holds j once (NeighbourSearch's contract, for any radius), dx is the
+//   shortest image at every query, and the triangle inequality needs no bound.
+// - The build reaches a hair beyond radius + skin (round_off_guard): without
+//   that, a pair on the very boundary of the radius could be lost to rounding.
 // - A NaN position counts as moved (every update rebuilds) and is never reported.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -70,18 +76,37 @@ class VerletList {
                          set.positions().size() != at_build_.size() ||
                          moved_more_than_half_skin(set.positions());
     if (rebuild) build(domain, radius, set);
-    current_ = set.positions();
+    const std::vector<Vec<D>>& positions = set.positions();
+    current_.resize(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) current_[i] = domain.wrap(positions[i]);
     return rebuild;
   }
 
   // f(j, dx) for every j near particle i (an index into the set as of the last update).
   template <class F>
   void for_each_near(std::size_t i, F&& f) const {
+    // As CellGrid::scan, a chunk of candidates is filtered without a branch before f
+    // is called: most are hits, unpredictably (radius^D / (radius + skin)^D of them).
+    // Measured on the LJ benchmark (3D, 32000 particles, g++ 12 -O2): queries 1.2x
+    // faster than with a branch per candidate, 2x faster than with minimum_image.
+    constexpr int chunk = 32;
+    std::size_t hit_j[chunk];
+    Vec<D> hit_dx[chunk];
     const Vec<D> pi = current_[i];
-    for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) {
-      const std::size_t j = neighbours_[k];
-      const Vec<D> dx = domain_.minimum_image(current_[j] - pi);
-      if (squared_norm(dx) <= squared_radius_) f(j, dx);
+    for (std::size_t k = start_[i], stop = start_[i + 1]; k != stop;) {
+      int hits = 0;
+      for (int c = 0; c < chunk && k != stop; ++c, ++k) {
+        const std::size_t j = neighbours_[k];
+        Vec<D> dx = current_[j] - pi;
+        for (int d = 0; d < D; ++d) {  // as BruteForce: wrapped points differ by less than L
+          const int shift = static_cast<int>(dx[d] > half_[d]) - static_cast<int>(dx[d] < -half_[d]);
+          dx[d] -= length_[d] * shift;
+        }
+        hit_j[hits] = j;
+        hit_dx[hits] = dx;
+        hits += static_cast<int>(squared_norm(dx) <= squared_radius_);
+      }
+      for (int h = 0; h < hits; ++h) f(hit_j[h], hit_dx[h]);
     }
   }
 
@@ -116,15 +141,20 @@ class VerletList {
     domain_ = domain;
     radius_ = radius;
     squared_radius_ = radius * radius * (1 + 1e-12);
+    for (int k = 0; k < D; ++k) {  // non-periodic: a shift of 0 * 0 when |d| > infinity, i.e. never
+      length_[k] = domain.periodic[k] ? domain.hi[k] - domain.lo[k] : 0.0;
+      half_[k] = domain.periodic[k] ? 0.5 * length_[k] : std::numeric_limits<double>::infinity();
+    }
     ++rebuild_count_;
   }
 
-  // The search measures pairs on wrapped points and shifted query images, while
-  // displacements and queries subtract stored positions: the two can disagree by
-  // a few ulps of the radius and of the periodic coordinates. The invariant's
-  // only slack for that is the contract's 1e-12 of skin (none when skin = 0), so
-  // the build reaches 1e-12 of those magnitudes further: thousands of ulps, and
-  // a negligible number of extra candidates.
+  // The search measures a pair with the query point shifted by a box length, the
+  // queries and displacements subtract stored positions first: the results can
+  // differ by a few ulps of the radius and of the periodic coordinates (up to
+  // |lo|, |hi|; more for positions far outside the box). The invariant leaves
+  // the contract's 1e-12 of skin for that, nothing when skin = 0, so the build
+  // reaches 1e-12 of those magnitudes further: thousands of ulps, and a
+  // negligible number of extra candidates.
   static double round_off_guard(const Domain<D>& domain, double radius) {
     double magnitude = radius;
     for (int k = 0; k < D; ++k)
@@ -138,8 +168,9 @@ class VerletList {
   Domain<D> domain_{};
   double radius_ = 0.0;
   double squared_radius_ = 0.0;
+  Vec<D> length_{}, half_{};              // per dimension, for the queries' image shift
   std::vector<Vec<D>> at_build_;          // positions at the last build, after its reorder
-  std::vector<Vec<D>> current_;           // positions at the last update: what queries measure
+  std::vector<Vec<D>> current_;           // wrapped positions at the last update: what queries measure
   std::vector<std::size_t> start_;        // the list of i is neighbours_[start_[i] .. start_[i+1]-1]
   std::vector<std::size_t> neighbours_;
 };

@@ -1,7 +1,8 @@
-// KdTree against O(N^2) references written here: for_each_near must report
-// exactly the points within the radius under minimum-image periodicity, each
-// once with its shortest vector; nearest must return the k nearest sorted by
-// distance, then index; for_each_in_box exactly the stored points in the box.
+// KdTree against O(N^2) references: for_each_near against search_cases.hpp's,
+// which wants exactly the points within the radius under minimum-image
+// periodicity, each once with its shortest vector; nearest must return the k
+// nearest sorted by distance, then index; for_each_in_box exactly the stored
+// points in the box.
 // Dimensions 1-4; periodic, non-periodic and mixed boxes; uniform, clustered
 // and adversarial point sets; radii up to beyond the periodic box.
 #include <catch2/catch.hpp>
@@ -12,33 +13,23 @@
 #include <cstring>
 #include <limits>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "search_cases.hpp"
 #include "partc/kd_tree.hpp"
 
 using partc::Domain;
 using partc::KdTree;
 using partc::Vec;
+using namespace search_cases;  // Case, disagreements, check_no_errors, the generators
 
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double quiet_nan = std::numeric_limits<double>::quiet_NaN();
-
-template <int D>
-struct Case {
-  std::string name;
-  Domain<D> domain;
-  double radius;
-  std::vector<Vec<D>> points;
-  std::vector<Vec<D>> queries;
-  bool exact = false;  // dyadic points: distances from dyadic queries are exact, ties included
-};
 
 // Every component a multiple of 2^-10 below 2^20: differences and squares of a few
 // of these are exact, so the reference's distances are too.
@@ -49,132 +40,19 @@ bool is_dyadic(const Vec<D>& v) {
   return true;
 }
 
-std::string show(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
-template <int D>
-std::string show(const Vec<D>& v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(";
-  for (int k = 0; k < D; ++k) s << (k ? ", " : "") << v[k];
-  return s.str() + ")";
-}
-
-// Independent reference: subtract the nearest whole number of boxes.
-template <int D>
-Vec<D> reference_image(const Domain<D>& domain, Vec<D> d) {
-  for (int k = 0; k < D; ++k) {
-    const double L = domain.hi[k] - domain.lo[k];
-    if (domain.periodic[k]) d[k] -= L * std::nearbyint(d[k] / L);
-  }
-  return d;
-}
-
-// Largest finite magnitude of a component (at least 1): rounding errors of positions scale with it.
-template <int D>
-double magnitude(const Vec<D>& v) {
-  double m = 1.0;
-  for (int k = 0; k < D; ++k)
-    if (std::isfinite(v[k])) m = std::max(m, std::abs(v[k]));
-  return m;
-}
-
-// Per-component rounding allowance for the pair q, points of c.
-template <int D>
-double tolerance(const Case<D>& c, const Vec<D>& q) {
-  double m = std::max({magnitude(c.domain.lo), magnitude(c.domain.hi), magnitude(q)});
-  for (const auto& p : c.points) m = std::max(m, magnitude(p));
-  return 64 * eps * m;
-}
-
-template <class Errors>
-void check_no_errors(const std::string& what, const Errors& errors) {
-  std::string first;
-  for (std::size_t i = 0; i < std::min<std::size_t>(errors.size(), 5); ++i)
-    first += "\n  " + errors[i];
-  INFO(what << ": " << errors.size() << " disagreements" << first);
-  CHECK(errors.empty());
-}
-
-// The caller's points in tree order: sorted[k] = points[order[k]].
-template <int D>
-std::vector<Vec<D>> sorted_points(const Case<D>& c, const KdTree<D>& tree) {
-  std::vector<Vec<D>> sorted;
-  for (std::size_t i : tree.order()) sorted.push_back(c.points[i]);
-  return sorted;
-}
-
-template <int D>
-std::vector<std::string> near_disagreements(const Case<D>& c, const KdTree<D>& tree) {
-  const std::vector<Vec<D>> pts = sorted_points(c, tree);
-  const double r = c.radius;
-  std::vector<std::string> errors;
-  std::vector<int> hits(pts.size());
-  std::vector<Vec<D>> found(pts.size());
-  for (std::size_t iq = 0; iq < c.queries.size(); ++iq) {
-    const Vec<D>& q = c.queries[iq];
-    const double tol = tolerance(c, q);
-    const double too_far = r * (1 + 1e-12) + D * tol;
-    // The contract's inflated radius, less what rounding may move a distance: points a
-    // hair beyond r (lattice neighbours at r(1 + 1e-16)) must still be found.
-    const double must_find_squared = std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol);
-    const auto where = [&](std::size_t j) {
-      return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + " " +
-             (j < pts.size() ? show(pts[j]) : std::string("?")) + ": ";
-    };
-    std::fill(hits.begin(), hits.end(), 0);
-    tree.for_each_near(q, [&](std::size_t j, const Vec<D>& dx) {
-      if (j >= pts.size()) {
-        errors.push_back(where(j) + "index out of range");
-        return;
-      }
-      ++hits[j];
-      found[j] = dx;
-    });
-    for (std::size_t j = 0; j < pts.size(); ++j) {
-      const Vec<D> ref = reference_image(c.domain, pts[j] - q);
-      if (hits[j] == 0) {
-        if (squared_norm(ref) <= must_find_squared)
-          errors.push_back(where(j) + "missed, dx " + show(ref));
-        continue;
-      }
-      if (hits[j] > 1)
-        errors.push_back(where(j) + "reported " + std::to_string(hits[j]) + " times");
-      if (!(norm(ref) <= too_far)) errors.push_back(where(j) + "too far, dx " + show(ref));
-      for (int k = 0; k < D; ++k) {
-        const double got = found[j][k];
-        if (std::abs(got - ref[k]) <= tol) continue;
-        // A point exactly half a box away has two shortest images; either will do.
-        const double half = 0.5 * (c.domain.hi[k] - c.domain.lo[k]);
-        const bool tie = c.domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= tol &&
-                         std::abs(got + ref[k]) <= tol;
-        if (!tie) {
-          errors.push_back(where(j) + "dx " + show(found[j]) + ", expected " + show(ref));
-          break;
-        }
-      }
-    }
-  }
-  return errors;
-}
-
 // nearest(q, k) against every finite point sorted by (reference distance, j). Distances
 // that differ only by rounding may come in either order, except in exact cases.
 template <int D>
 std::vector<std::string> nearest_disagreements(const Case<D>& c, const KdTree<D>& tree) {
-  const std::vector<Vec<D>> pts = sorted_points(c, tree);
+  const std::vector<Vec<D>> pts = in_order(c.points, tree.order());
+  const double points_magnitude = magnitude(c.domain, c.points);
   std::vector<std::string> errors;
   // Each query costs a sort of all points: of the queries at the points, a sample.
   const std::size_t stride = 1 + c.points.size() / 200;
   for (std::size_t iq = 0; iq < c.queries.size(); ++iq) {
     if (iq < c.points.size() && iq % stride != 0) continue;
     const Vec<D>& q = c.queries[iq];
-    const double tol = D * tolerance(c, q);
+    const double tol = D * tolerance(points_magnitude, q);
     const bool exact = c.exact && is_dyadic(q);
     std::vector<std::pair<double, std::size_t>> ref;
     std::vector<double> ref_distance(pts.size(), quiet_nan);
@@ -223,7 +101,7 @@ std::vector<std::string> nearest_disagreements(const Case<D>& c, const KdTree<D>
 // the queries, the whole domain, an infinite box, a point and an empty box.
 template <int D>
 std::vector<std::string> box_disagreements(const Case<D>& c, const KdTree<D>& tree) {
-  const std::vector<Vec<D>> pts = sorted_points(c, tree);
+  const std::vector<Vec<D>> pts = in_order(c.points, tree.order());
   std::vector<std::pair<Vec<D>, Vec<D>>> boxes = {
       {c.domain.lo, c.domain.hi},
       {Vec<D>::filled(-inf), Vec<D>::filled(inf)},
@@ -275,101 +153,9 @@ void check_tree(const Case<D>& c) {
   std::sort(order.begin(), order.end());
   for (std::size_t i = 0; i < order.size(); ++i) REQUIRE(order[i] == i);
   REQUIRE(order.size() == c.points.size());
-  check_no_errors("for_each_near", near_disagreements(c, tree));
+  check_no_errors("for_each_near", disagreements(c, in_order(c.points, tree.order()), tree));
   check_no_errors("nearest", nearest_disagreements(c, tree));
   check_no_errors("for_each_in_box", box_disagreements(c, tree));
-}
-
-// ---------------------------------------------------------------------------
-// Case generators
-
-enum class Periodicity { none, all, mixed };
-constexpr Periodicity all_periodicities[] = {Periodicity::none, Periodicity::all,
-                                             Periodicity::mixed};
-
-// uniform: [-1, 1] in every dimension; else lengths 2, 2.75, 3.5, 4.25.
-template <int D>
-Domain<D> make_domain(Periodicity periodicity, bool uniform) {
-  Domain<D> d{};
-  for (int k = 0; k < D; ++k) {
-    d.lo[k] = uniform ? -1.0 : -1.0 - 0.25 * k;
-    d.hi[k] = uniform ? 1.0 : d.lo[k] + 2.0 + 0.75 * k;
-    d.periodic[k] =
-        periodicity == Periodicity::all || (periodicity == Periodicity::mixed && k % 2 == 0);
-  }
-  return d;
-}
-
-const char* periodicity_name(Periodicity p) {
-  return p == Periodicity::none ? "non-periodic" : p == Periodicity::all ? "periodic" : "mixed";
-}
-
-// Queries: every point, random points in and around the box, far-away points.
-template <int D>
-void add_queries(Case<D>& c, std::mt19937_64& rng) {
-  c.queries = c.points;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int i = 0; i < 25; ++i) {
-    Vec<D> q;
-    for (int k = 0; k < D; ++k) {
-      const double L = c.domain.hi[k] - c.domain.lo[k];
-      q[k] = c.domain.lo[k] - L + 3 * L * unit(rng);
-    }
-    c.queries.push_back(q);
-  }
-  Vec<D> far_low = c.domain.lo, far_high = c.domain.hi;
-  for (int k = 0; k < D; ++k) {
-    const double L = c.domain.hi[k] - c.domain.lo[k];
-    far_low[k] -= 1000.3 * L;
-    far_high[k] += 12345.0625 * L;
-  }
-  c.queries.push_back(far_low);
-  c.queries.push_back(far_high);
-  c.queries.push_back(c.domain.lo);
-  c.queries.push_back(c.domain.hi);
-}
-
-template <int D>
-Case<D> make_case(std::string name, Periodicity periodicity, bool uniform, double radius,
-                  std::vector<Vec<D>> points) {
-  Case<D> c;
-  c.name = name + " " + periodicity_name(periodicity);
-  c.domain = make_domain<D>(periodicity, uniform);
-  c.radius = radius;
-  c.points = std::move(points);
-  std::mt19937_64 rng(5);
-  add_queries(c, rng);
-  return c;
-}
-
-// Mostly uniform points in the box; some outside it; some with coordinates on
-// lo, hi, next to them, or half a box away.
-template <int D>
-Case<D> random_case(Periodicity periodicity, std::size_t n, double radius_fraction,
-                    std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Domain<D> domain = make_domain<D>(periodicity, false);
-  std::vector<Vec<D>> points;
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec<D> p;
-    const double kind = unit(rng);
-    for (int k = 0; k < D; ++k) {
-      const double lo = domain.lo[k], hi = domain.hi[k], L = hi - lo;
-      if (kind < 0.75) {
-        p[k] = lo + L * unit(rng);
-      } else if (kind < 0.85) {
-        p[k] = lo - 0.5 * L + 2 * L * unit(rng);  // possibly outside
-      } else {
-        const double special[] = {lo, hi, std::nextafter(hi, lo), std::nextafter(lo, hi),
-                                  std::nextafter(lo, lo - 1), lo + 0.5 * L};
-        p[k] = special[rng() % 6];
-      }
-    }
-    points.push_back(p);
-  }
-  // The shortest box side is 2.
-  return make_case<D>("random", periodicity, false, 2 * radius_fraction, std::move(points));
 }
 
 // A few tight Gaussian blobs, one of them centred on the lo corner (split by
@@ -395,41 +181,11 @@ Case<D> blobs_case(Periodicity periodicity, double sigma, double radius, std::ui
                       std::move(points));
 }
 
-// The lattice -1 + m * spacing, m = 0..count-1, in [-1, 1]: with spacing 0.5 and
-// 5 points it includes lo and hi, and many distances are exactly the radius.
-template <int D>
-Case<D> lattice_case(Periodicity periodicity, double spacing, int count, double radius) {
-  std::vector<Vec<D>> points;
-  std::vector<int> m(D, 0);
-  while (true) {
-    Vec<D> p;
-    for (int k = 0; k < D; ++k) p[k] = -1.0 + m[k] * spacing;
-    points.push_back(p);
-    int k = 0;
-    while (k < D && ++m[k] == count) m[k++] = 0;
-    if (k == D) break;
-  }
-  Case<D> c = make_case<D>("lattice spacing " + std::to_string(spacing), periodicity, true,
-                           radius, points);
-  for (std::size_t i = 0; i < points.size(); i += 3)  // lattice points shifted half a step
-    c.queries.push_back(points[i] + Vec<D>::filled(0.5 * spacing));
-  return c;
-}
-
 }  // namespace
-
-template <int D>
-using Dim = std::integral_constant<int, D>;
-#define PARTC_ALL_DIMS Dim<1>, Dim<2>, Dim<3>, Dim<4>
 
 TEMPLATE_TEST_CASE("kd tree: random sets match the references", "[kd_tree]", PARTC_ALL_DIMS) {
   constexpr int D = TestType::value;
-  std::uint64_t seed = 2000 * D;
-  for (Periodicity periodicity : all_periodicities)
-    for (std::size_t n : {0, 1, 2, 31, 150})
-      // 0.5+: radius beyond half the shortest box side; 0.3-0.34 around the image/exact switch.
-      for (double radius_fraction : {0.003, 0.13, 0.3, 0.34, 0.5, 0.61, 1.7})
-        check_tree(random_case<D>(periodicity, n, radius_fraction, ++seed));
+  for_each_random_case<D>(2000 * D, [](const Case<D>& c) { check_tree(c); });
 }
 
 TEMPLATE_TEST_CASE("kd tree: clustered sets match the references", "[kd_tree]", PARTC_ALL_DIMS) {

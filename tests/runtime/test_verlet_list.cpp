@@ -1,7 +1,7 @@
-// VerletList against an O(N^2) reference over the current positions, step after
-// step of motion: the same j for every i, each once, with the same dx; and its
-// rebuild rule, probed just under and just over half the skin, with the worst
-// case of two particles approaching each other.
+// VerletList against the O(N^2) reference of search_cases.hpp over the current
+// positions, step after step of motion: the same j for every i, each once, with
+// the same dx; and its rebuild rule, probed just under and just over half the
+// skin, with the worst case of two particles approaching each other.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,11 +10,10 @@
 #include <limits>
 #include <numeric>
 #include <random>
-#include <sstream>
 #include <stdexcept>
-#include <string>
 #include <vector>
 
+#include "search_cases.hpp"
 #include "partc/domain.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/vec.hpp"
@@ -23,27 +22,12 @@
 using partc::Domain;
 using partc::Vec;
 using partc::VerletList;
+using namespace search_cases;  // disagreements, check_no_errors, make_domain, Dim
 
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
-
 template <int D>
 using Set = partc::ParticleSet<D>;
-
-enum class Periodicity { none, all, mixed };
-
-// Box [-1 - k/4, 1 + k/2) in dimension k: lengths 2, 2.75, 3.5.
-template <int D>
-Domain<D> make_domain(Periodicity periodicity) {
-  Domain<D> d{};
-  for (int k = 0; k < D; ++k) {
-    d.lo[k] = -1.0 - 0.25 * k;
-    d.hi[k] = d.lo[k] + 2.0 + 0.75 * k;
-    d.periodic[k] = periodicity == Periodicity::all || (periodicity == Periodicity::mixed && k % 2 == 0);
-  }
-  return d;
-}
 
 template <int D>
 Domain<D> unit_box(bool periodic) {
@@ -54,94 +38,6 @@ Domain<D> unit_box(bool periodic) {
     d.periodic[k] = periodic;
   }
   return d;
-}
-
-template <int D>
-std::string show(const Vec<D>& v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(";
-  for (int k = 0; k < D; ++k) s << (k ? ", " : "") << v[k];
-  return s.str() + ")";
-}
-
-// Independent of Domain::minimum_image: subtract the nearest whole number of boxes.
-template <int D>
-Vec<D> reference_image(const Domain<D>& domain, Vec<D> d) {
-  for (int k = 0; k < D; ++k) {
-    const double L = domain.hi[k] - domain.lo[k];
-    if (domain.periodic[k]) d[k] -= L * std::nearbyint(d[k] / L);
-  }
-  return d;
-}
-
-// Every query for_each_near(i) against all pairs of `positions` (the set as it is
-// now); returns a description of each disagreement. Pairs within rounding of the
-// radius may go either way, as in test_search.cpp.
-template <int D>
-std::vector<std::string> disagreements(const VerletList<D>& list, const Domain<D>& domain,
-                                       double radius, const std::vector<Vec<D>>& positions) {
-  double magnitude = 1.0;
-  for (int k = 0; k < D; ++k)
-    magnitude = std::max({magnitude, std::abs(domain.lo[k]), std::abs(domain.hi[k])});
-  for (const auto& p : positions)
-    for (int k = 0; k < D; ++k) magnitude = std::max(magnitude, std::abs(p[k]));
-  const double tol = 64 * eps * magnitude;
-  const double too_far = radius * (1 + 1e-12) + D * tol;
-  const double must_find_squared =
-      std::max(radius * radius, radius * radius * (1 + 1e-12) - 2 * radius * D * tol);
-
-  std::vector<std::string> errors;
-  const std::size_t n = positions.size();
-  std::vector<int> hits(n);
-  std::vector<Vec<D>> found(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto where = [&](std::size_t j) {
-      return "i " + std::to_string(i) + " " + show(positions[i]) + ", j " + std::to_string(j) +
-             (j < n ? " " + show(positions[j]) : std::string()) + ": ";
-    };
-    std::fill(hits.begin(), hits.end(), 0);
-    list.for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
-      if (j >= n) {
-        errors.push_back(where(j) + "index out of range");
-        return;
-      }
-      ++hits[j];
-      found[j] = dx;
-    });
-    for (std::size_t j = 0; j < n; ++j) {
-      const Vec<D> ref = reference_image(domain, positions[j] - positions[i]);
-      if (hits[j] == 0) {
-        if (squared_norm(ref) <= must_find_squared)
-          errors.push_back(where(j) + "missed, dx " + show(ref));
-        continue;
-      }
-      if (hits[j] > 1) errors.push_back(where(j) + "reported " + std::to_string(hits[j]) + " times");
-      if (!(norm(ref) <= too_far)) errors.push_back(where(j) + "too far, dx " + show(ref));
-      for (int k = 0; k < D; ++k) {
-        if (std::abs(found[j][k] - ref[k]) <= tol) continue;
-        // A component of exactly half a box has two shortest images; either will do.
-        const double half = 0.5 * (domain.hi[k] - domain.lo[k]);
-        if (domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= tol &&
-            std::abs(found[j][k] + ref[k]) <= tol)
-          continue;
-        errors.push_back(where(j) + "dx " + show(found[j]) + ", expected " + show(ref));
-        break;
-      }
-    }
-  }
-  return errors;
-}
-
-template <int D>
-void check_exact(const VerletList<D>& list, const Domain<D>& domain, double radius,
-                 const Set<D>& set) {
-  const std::vector<std::string> errors = disagreements(list, domain, radius, set.positions());
-  std::string first;
-  for (std::size_t e = 0; e < std::min<std::size_t>(errors.size(), 5); ++e)
-    first += "\n  " + errors[e];
-  INFO(errors.size() << " disagreements" << first);
-  CHECK(errors.empty());
 }
 
 template <int D>
@@ -171,14 +67,19 @@ Set<D> random_set(const Domain<D>& domain, std::size_t n, std::mt19937_64& rng) 
   return set;
 }
 
-const char* periodicity_name(Periodicity p) {
-  return p == Periodicity::none ? "non-periodic" : p == Periodicity::all ? "periodic" : "mixed";
+// Every particle's query against the reference over the set as it is now.
+template <int D>
+void check_exact(const VerletList<D>& list, const Domain<D>& domain, double radius,
+                 const Set<D>& set) {
+  check_no_errors("VerletList",
+                  disagreements(domain, radius, set.positions(), set.positions(),
+                                [&](std::size_t i, const auto& report) {
+                                  list.for_each_near(i, report);
+                                }));
 }
 
 }  // namespace
 
-template <int D>
-using Dim = std::integral_constant<int, D>;
 #define PARTC_VERLET_DIMS Dim<1>, Dim<2>, Dim<3>
 
 TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion", "[verlet]",
@@ -193,11 +94,11 @@ TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion
   // radius 3 > L/2 itself): brute force, and minimum images matter.
   const Params cases[] = {{150, 0.2, 0.1}, {60, 0.7, 0.4}, {60, 1.2, 0.5}, {30, 3.0, 0.5}};
   std::uint64_t seed = 100 * D;
-  for (Periodicity periodicity : {Periodicity::none, Periodicity::all, Periodicity::mixed}) {
+  for (Periodicity periodicity : all_periodicities) {
     for (const Params& c : cases) {
       INFO(periodicity_name(periodicity) << ", D = " << D << ", N = " << c.n << ", radius "
                                          << c.radius << ", skin " << c.skin);
-      const Domain<D> domain = make_domain<D>(periodicity);
+      const Domain<D> domain = make_domain<D>(periodicity, false);
       std::mt19937_64 rng(++seed);
       Set<D> set = random_set(domain, c.n, rng);
       VerletList<D> list(c.skin);

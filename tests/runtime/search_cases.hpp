@@ -1,0 +1,328 @@
+// What the search structure tests (test_search.cpp, test_kd_tree.cpp,
+// test_verlet_list.cpp) share: the independent brute-force reference for
+// fixed-radius queries under minimum-image periodicity, with the rounding
+// allowance it grants, and the generators of their test cases (boxes, random,
+// lattice and hand-made point sets, queries in and far outside the box).
+#pragma once
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "partc/domain.hpp"
+#include "partc/vec.hpp"
+
+namespace search_cases {
+
+using partc::Domain;
+using partc::Vec;
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+template <int D>
+struct Case {
+  std::string name;
+  Domain<D> domain;
+  double radius;
+  std::vector<Vec<D>> points;
+  std::vector<Vec<D>> queries;
+  bool exact = false;  // dyadic points: distances from dyadic queries are exact, ties included
+};
+
+inline std::string show(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+template <int D>
+std::string show(const Vec<D>& v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(";
+  for (int k = 0; k < D; ++k) s << (k ? ", " : "") << v[k];
+  return s.str() + ")";
+}
+
+// Independent of Domain::minimum_image: subtract the nearest whole number of boxes.
+template <int D>
+Vec<D> reference_image(const Domain<D>& domain, Vec<D> d) {
+  for (int k = 0; k < D; ++k) {
+    const double L = domain.hi[k] - domain.lo[k];
+    if (domain.periodic[k]) d[k] -= L * std::nearbyint(d[k] / L);
+  }
+  return d;
+}
+
+// Largest finite magnitude of a component (at least 1): rounding errors of positions scale with it.
+template <int D>
+double magnitude(const Vec<D>& v) {
+  double m = 1.0;
+  for (int k = 0; k < D; ++k)
+    if (std::isfinite(v[k])) m = std::max(m, std::abs(v[k]));
+  return m;
+}
+
+// The same over the domain's corners and all points.
+template <int D>
+double magnitude(const Domain<D>& domain, const std::vector<Vec<D>>& points) {
+  double m = std::max(magnitude(domain.lo), magnitude(domain.hi));
+  for (const auto& p : points) m = std::max(m, magnitude(p));
+  return m;
+}
+
+// Per-component allowance for the rounding of positions, shifts and wrapping in a
+// query at q among points of magnitude(domain, points) = points_magnitude.
+template <int D>
+double tolerance(double points_magnitude, const Vec<D>& q) {
+  return 64 * eps * std::max(points_magnitude, magnitude(q));
+}
+
+// Structures report indices into their own order of the points: result[k] = points[order[k]].
+template <int D>
+std::vector<Vec<D>> in_order(const std::vector<Vec<D>>& points,
+                             const std::vector<std::size_t>& order) {
+  std::vector<Vec<D>> result;
+  for (std::size_t i : order) result.push_back(points[i]);
+  return result;
+}
+
+// Runs every query through for_each_near(iq, report), which must call report(j, dx)
+// for each point the structure under test finds near queries[iq] (j indexes
+// `points`), and returns a description of each disagreement with the reference:
+// every point within `radius` once, with its shortest dx = points[j] - queries[iq].
+template <int D, class ForEachNear>
+std::vector<std::string> disagreements(const Domain<D>& domain, double radius,
+                                       const std::vector<Vec<D>>& points,
+                                       const std::vector<Vec<D>>& queries,
+                                       const ForEachNear& for_each_near) {
+  const double r = radius;
+  const double points_magnitude = magnitude(domain, points);
+  std::vector<std::string> errors;
+  std::vector<int> hits(points.size());
+  std::vector<Vec<D>> found(points.size());
+  for (std::size_t iq = 0; iq < queries.size(); ++iq) {
+    const Vec<D>& q = queries[iq];
+    const double tol = tolerance(points_magnitude, q);
+    const double too_far = r * (1 + 1e-12) + D * tol;
+    // The contract's inflated radius, less what rounding may move a distance: points a
+    // hair beyond r (lattice neighbours at r(1 + 1e-16)) must still be found.
+    const double must_find_squared = std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol);
+    const auto where = [&](std::size_t j) {
+      return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + " " +
+             (j < points.size() ? show(points[j]) : std::string("?")) + ": ";
+    };
+    std::fill(hits.begin(), hits.end(), 0);
+    for_each_near(iq, [&](std::size_t j, const Vec<D>& dx) {
+      if (j >= points.size()) {
+        errors.push_back(where(j) + "index out of range");
+        return;
+      }
+      ++hits[j];
+      found[j] = dx;
+    });
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const Vec<D> ref = reference_image(domain, points[j] - q);
+      if (hits[j] == 0) {
+        if (squared_norm(ref) <= must_find_squared)
+          errors.push_back(where(j) + "missed, dx " + show(ref));
+        continue;
+      }
+      if (hits[j] > 1)
+        errors.push_back(where(j) + "reported " + std::to_string(hits[j]) + " times");
+      if (!(norm(ref) <= too_far)) errors.push_back(where(j) + "too far, dx " + show(ref));
+      for (int k = 0; k < D; ++k) {
+        const double got = found[j][k];
+        if (std::abs(got - ref[k]) <= tol) continue;
+        // A point exactly half a box away has two shortest images; either will do.
+        const double half = 0.5 * (domain.hi[k] - domain.lo[k]);
+        const bool tie = domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= tol &&
+                         std::abs(got + ref[k]) <= tol;
+        if (!tie) {
+          errors.push_back(where(j) + "dx " + show(found[j]) + ", expected " + show(ref));
+          break;
+        }
+      }
+    }
+  }
+  return errors;
+}
+
+// The queries of c against a structure queried by position, for_each_near(q, report),
+// whose indices refer to `points` (c.points in the structure's order).
+template <int D, class Search>
+std::vector<std::string> disagreements(const Case<D>& c, const std::vector<Vec<D>>& points,
+                                       const Search& search) {
+  return disagreements(c.domain, c.radius, points, c.queries,
+                       [&](std::size_t iq, const auto& report) {
+                         search.for_each_near(c.queries[iq], report);
+                       });
+}
+
+// One assertion per call, showing the first few disagreements when it fails.
+template <class Errors>
+void check_no_errors(const std::string& what, const Errors& errors) {
+  std::string first;
+  for (std::size_t i = 0; i < std::min<std::size_t>(errors.size(), 5); ++i)
+    first += "\n  " + errors[i];
+  INFO(what << ": " << errors.size() << " disagreements" << first);
+  CHECK(errors.empty());
+}
+
+// ---------------------------------------------------------------------------
+// Case generators
+
+// TEMPLATE_TEST_CASE takes types: the dimension as one. The structures are tested
+// in dimensions 1-4.
+template <int D>
+using Dim = std::integral_constant<int, D>;
+#define PARTC_ALL_DIMS \
+  search_cases::Dim<1>, search_cases::Dim<2>, search_cases::Dim<3>, search_cases::Dim<4>
+
+enum class Periodicity { none, all, mixed };
+constexpr Periodicity all_periodicities[] = {Periodicity::none, Periodicity::all,
+                                             Periodicity::mixed};
+
+inline const char* periodicity_name(Periodicity p) {
+  return p == Periodicity::none ? "non-periodic" : p == Periodicity::all ? "periodic" : "mixed";
+}
+
+// uniform: [-1, 1] in every dimension; else [-1 - k/4, 1 + k/2) in dimension k,
+// lengths 2, 2.75, 3.5, 4.25. Mixed: the even dimensions are periodic.
+template <int D>
+Domain<D> make_domain(Periodicity periodicity, bool uniform) {
+  Domain<D> d{};
+  for (int k = 0; k < D; ++k) {
+    d.lo[k] = uniform ? -1.0 : -1.0 - 0.25 * k;
+    d.hi[k] = uniform ? 1.0 : d.lo[k] + 2.0 + 0.75 * k;
+    d.periodic[k] =
+        periodicity == Periodicity::all || (periodicity == Periodicity::mixed && k % 2 == 0);
+  }
+  return d;
+}
+
+// Queries: every point, random points in and around the box, far-away points.
+template <int D>
+void add_queries(Case<D>& c, std::mt19937_64& rng) {
+  c.queries = c.points;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 25; ++i) {
+    Vec<D> q;
+    for (int k = 0; k < D; ++k) {
+      const double L = c.domain.hi[k] - c.domain.lo[k];
+      q[k] = c.domain.lo[k] - L + 3 * L * unit(rng);
+    }
+    c.queries.push_back(q);
+  }
+  Vec<D> far_low = c.domain.lo, far_high = c.domain.hi;
+  for (int k = 0; k < D; ++k) {
+    const double L = c.domain.hi[k] - c.domain.lo[k];
+    far_low[k] -= 1000.3 * L;
+    far_high[k] += 12345.0625 * L;
+  }
+  c.queries.push_back(far_low);
+  c.queries.push_back(far_high);
+  c.queries.push_back(c.domain.lo);
+  c.queries.push_back(c.domain.hi);
+}
+
+// Given points in a standard box, with the standard queries.
+template <int D>
+Case<D> make_case(const std::string& name, Periodicity periodicity, bool uniform, double radius,
+                  std::vector<Vec<D>> points) {
+  Case<D> c;
+  c.name = name + " " + periodicity_name(periodicity);
+  c.domain = make_domain<D>(periodicity, uniform);
+  c.radius = radius;
+  c.points = std::move(points);
+  std::mt19937_64 rng(5);
+  add_queries(c, rng);
+  return c;
+}
+
+// Mostly uniform points in the non-uniform box; some outside it; some with
+// coordinates on lo or hi, next to them, half a box away, or on the (nominal)
+// cell edges lo + m * radius.
+template <int D>
+Case<D> random_case(Periodicity periodicity, std::size_t n, double radius_fraction,
+                    std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Case<D> c;
+  c.domain = make_domain<D>(periodicity, false);
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < D; ++k) shortest = std::min(shortest, c.domain.hi[k] - c.domain.lo[k]);
+  c.radius = radius_fraction * shortest;
+  c.name = std::string("random ") + periodicity_name(periodicity);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec<D> p;
+    const double kind = unit(rng);
+    for (int k = 0; k < D; ++k) {
+      const double lo = c.domain.lo[k], hi = c.domain.hi[k], L = hi - lo;
+      if (kind < 0.75) {
+        p[k] = lo + L * unit(rng);
+      } else if (kind < 0.85) {
+        p[k] = lo - 0.5 * L + 2 * L * unit(rng);  // possibly outside
+      } else {
+        const double special[] = {lo, hi, std::nextafter(hi, lo), std::nextafter(lo, hi),
+                                  std::nextafter(lo, lo - 1), lo + 0.5 * L,
+                                  lo + std::floor(unit(rng) * L / c.radius) * c.radius};
+        p[k] = special[rng() % 7];
+      }
+    }
+    c.points.push_back(p);
+  }
+  add_queries(c, rng);
+  return c;
+}
+
+// Calls check on random cases of every periodicity, with 0 to 150 points and radii
+// from 0.003 of the shortest box side (a capped cell count) through 0.3-0.34 (about
+// 3 cells; the k-d tree's switch between images and the exact mode) to beyond half
+// of it (0.5+); the seeds are first_seed + 1, + 2, ...
+template <int D, class Check>
+void for_each_random_case(std::uint64_t first_seed, const Check& check) {
+  std::uint64_t seed = first_seed;
+  for (Periodicity periodicity : all_periodicities)
+    for (std::size_t n : {0, 1, 2, 31, 150})
+      for (double radius_fraction : {0.003, 0.13, 0.3, 0.34, 0.5, 0.61, 1.7})
+        check(random_case<D>(periodicity, n, radius_fraction, ++seed));
+}
+
+// Points on the lattice lo + m * spacing, m = 0..count-1, in [-1, 1]: on cell edges,
+// and on lo and hi themselves when spacing divides the box (with spacing 0.5 and 5
+// points), so that many distances are exactly the radius.
+template <int D>
+Case<D> lattice_case(Periodicity periodicity, double spacing, int count, double radius) {
+  Case<D> c;
+  c.domain = make_domain<D>(periodicity, true);
+  c.radius = radius;
+  c.name = std::string("lattice ") + periodicity_name(periodicity) +
+           ", spacing " + std::to_string(spacing);
+  std::vector<int> m(D, 0);
+  while (true) {
+    Vec<D> p;
+    for (int k = 0; k < D; ++k) p[k] = c.domain.lo[k] + m[k] * spacing;
+    c.points.push_back(p);
+    int k = 0;
+    while (k < D && ++m[k] == count) m[k++] = 0;
+    if (k == D) break;
+  }
+  std::mt19937_64 rng(17);
+  add_queries(c, rng);
+  for (std::size_t i = 0; i < c.points.size(); i += 3)  // lattice points shifted half a step
+    c.queries.push_back(c.points[i] + Vec<D>::filled(0.5 * spacing));
+  return c;
+}
+
+}  // namespace search_cases
