@@ -141,9 +141,14 @@ class AccumulationFinder : public ir::Visitor {
       const std::string text = source_.substr(fact.radius->loc.begin,
                                               fact.radius->loc.end - fact.radius->loc.begin);
       fact.kind = SearchFact::Kind::Neighbours;
+      // A bound on dot(dx, dx) is kept as sqrt(bound), whose text is the bound's.
+      const bool squared = ir::as<ir::Call>(fact.radius) &&
+                           ir::as<ir::Call>(fact.radius)->fn == ir::Function::Sqrt &&
+                           fact.radius->loc.begin == ir::as<ir::Call>(fact.radius)->args[0]->loc.begin;
+      const std::string bounded = squared ? "|dx|^2" : "|dx|";
       fact.reason = is_uniform(fact.radius)
-                        ? "the condition bounds |dx| by " + text + ": spatial search with that radius"
-                        : "the condition bounds |dx| by " + text +
+                        ? "the condition bounds " + bounded + " by " + text + ": spatial search with that radius"
+                        : "the condition bounds " + bounded + " by " + text +
                               ": spatial search sized by its largest value over the particles";
     } else {
       fact.reason = acc.condition

@@ -26,6 +26,12 @@ std::string cpp_name(const std::string& name) {
   return reserved ? name + "_" : name;
 }
 
+std::string upper_case(const std::string& name) {
+  std::string out;
+  for (char c : name) out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
 std::string class_name(const std::string& model_name) {
   std::string out;
   bool upper = true;

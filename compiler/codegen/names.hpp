@@ -14,6 +14,9 @@ namespace partc::codegen {
 // `name`, or `name_` when `name` is a C++ keyword or reserved identifier.
 std::string cpp_name(const std::string& name);
 
+// "LjMelt" -> "LJMELT": for macro names.
+std::string upper_case(const std::string& name);
+
 // "lj_melt" -> "LjMelt": the generated class.
 std::string class_name(const std::string& model_name);
 
