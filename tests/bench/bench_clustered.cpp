@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "timing.hpp"
 #include "clustered_density_auto.hpp"
 #include "clustered_density_cell_list.hpp"
 #include "clustered_density_kd_tree.hpp"
@@ -143,19 +144,6 @@ std::vector<double> rho_by_id(const Model& model) {
   return by_id;
 }
 
-template <class F>
-double seconds(F&& f, int times = 1) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < times; ++k) f();
-  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-  return elapsed.count();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
 // Te of each model (its step()), in seconds. The first step() builds the
 // search; the models then take turns, each timed batch after an untimed one
 // of the same model, so that a slow spell of the machine hits them alike (as
@@ -164,16 +152,16 @@ std::vector<double> time_evaluations(const std::vector<std::function<void()>>& s
   std::vector<int> batch;
   for (const auto& step : steps) {
     step();
-    batch.push_back(std::max(1, static_cast<int>(min_batch_seconds / seconds(step))));
+    batch.push_back(std::max(1, static_cast<int>(min_batch_seconds / bench::seconds(step))));
   }
   std::vector<std::vector<double>> te(steps.size());
   for (int r = 0; r < repetitions; ++r)
     for (std::size_t k = 0; k < steps.size(); ++k) {
-      seconds(steps[k], batch[k]);
-      te[k].push_back(seconds(steps[k], batch[k]) / batch[k]);
+      bench::seconds(steps[k], batch[k]);
+      te[k].push_back(bench::seconds(steps[k], batch[k]) / batch[k]);
     }
   std::vector<double> result;
-  for (const auto& times : te) result.push_back(median(times));
+  for (const auto& times : te) result.push_back(bench::median(times));
   return result;
 }
 
@@ -189,9 +177,9 @@ double build_seconds(const Points& p, double h,
     for (const auto& q : as_vecs(p)) set.push_back(q);
     partc::NeighbourSearch<2> search =
         kind ? partc::NeighbourSearch<2>(*kind) : partc::NeighbourSearch<2>();
-    times.push_back(seconds([&] { search.build(unit_square(), h, set); }));
+    times.push_back(bench::seconds([&] { search.build(unit_square(), h, set); }));
   }
-  return median(times);
+  return bench::median(times);
 }
 
 struct Distribution {

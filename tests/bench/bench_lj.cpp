@@ -48,6 +48,7 @@
 
 // lj_melt_setup.hpp includes the generated lj_melt.hpp, which has no include
 // guard: including it here as well would define LjMelt twice.
+#include "timing.hpp"
 #include "lj_melt_setup.hpp"
 
 namespace {
@@ -62,11 +63,6 @@ constexpr int thermo_every = 10;
 // order and with other roundings (s = 1/r^2 powers against r^-6 ones): ~1e-15
 // relative per term. A missing or extra pair changes a force by a whole term.
 constexpr double force_tolerance = 1e-10;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 struct Thermo {
   int step;
@@ -259,7 +255,7 @@ int main(int argc, char** argv) {
     for (const LammpsPolicy& p : lammps) print(lammps_value(p));
     std::printf("\n");
   };
-  const auto lammps_loop = [](const LammpsPolicy& p) { return median(p.loop_seconds); };
+  const auto lammps_loop = [](const LammpsPolicy& p) { return bench::median(p.loop_seconds); };
   row("loop time of 100 steps / s", partc_loop, lammps_loop, "%.3f");
   row(
       "time per step / ms", 1e3 * partc_loop / steps,

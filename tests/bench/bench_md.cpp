@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "timing.hpp"
 #include "md_velocity.hpp"
 
 namespace {
@@ -69,6 +70,17 @@ Positions uniform_positions(std::size_t n, std::uint64_t seed) {
     p.y[i] = box * uniform();
   }
   return p;
+}
+
+// The seed's pair force -exp(-r) dx / r for 0 < r < rc, added to (fx, fy):
+// both hand-written kernels share it, as a hand-writer would.
+inline void add_pair_force(double dx, double dy, double r2, double rc2, double& fx, double& fy) {
+  if (r2 < rc2 && r2 > 0.0) {
+    const double r = std::sqrt(r2);
+    const double s = -std::exp(-r) / r;
+    fx += s * dx;
+    fy += s * dy;
+  }
 }
 
 // The hand-written kernel with a cell list: square cells at least rc wide,
@@ -120,12 +132,7 @@ class HandCellList {
             for (std::size_t j = nc.first; j < nc.last; ++j) {
               const double dx = x_[j] - xi, dy = y_[j] - yi;
               const double r2 = dx * dx + dy * dy;
-              if (r2 < rc2 && r2 > 0.0) {
-                const double r = std::sqrt(r2);
-                const double s = -std::exp(-r) / r;
-                fx += s * dx;
-                fy += s * dy;
-              }
+              add_pair_force(dx, dy, r2, rc2, fx, fy);
             }
           }
           vx_[i] += c * fx;
@@ -218,12 +225,7 @@ class HandBruteForce {
         dx -= box * ((dx > 0.5 * box) - (dx < -0.5 * box));
         dy -= box * ((dy > 0.5 * box) - (dy < -0.5 * box));
         const double r2 = dx * dx + dy * dy;
-        if (r2 < rc2 && r2 > 0.0) {
-          const double r = std::sqrt(r2);
-          const double s = -std::exp(-r) / r;
-          fx += s * dx;
-          fy += s * dy;
-        }
+        add_pair_force(dx, dy, r2, rc2, fx, fy);
       }
       vx_[i] += c * fx;
       vy_[i] += c * fy;
@@ -312,11 +314,6 @@ double seconds_per_update(Update&& update, int batch) {
   return elapsed.count() / batch;
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
 struct Cutoff {
   const char* description;
   double (*rc)(std::size_t n);
@@ -367,9 +364,9 @@ Row measure(std::size_t n, double rc) {
 
   Row row{};
   row.neighbours = cells ? cells->mean_neighbours() : brute->mean_neighbours();
-  row.te_partc = median(partc_times);
-  row.te_brute = brute ? median(brute_times) : -1.0;
-  row.te_hand = cells ? median(hand_times) : row.te_brute;
+  row.te_partc = bench::median(partc_times);
+  row.te_brute = brute ? bench::median(brute_times) : -1.0;
+  row.te_hand = cells ? bench::median(hand_times) : row.te_brute;
   row.hand_is_brute_force = !cells;
   return row;
 }

@@ -37,6 +37,7 @@
 
 // Generated headers have no include guard: each is included exactly once
 // (lj_melt.hpp through lj_melt_setup.hpp).
+#include "timing.hpp"
 #include "lj_melt_setup.hpp"
 #include "md_velocity.hpp"
 
@@ -52,19 +53,6 @@ void set_threads(int n) {
 #else
   (void)n;
 #endif
-}
-
-template <class F>
-double seconds(F&& f, int times = 1) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < times; ++k) f();
-  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-  return elapsed.count();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 void print_row(const char* kernel, std::size_t n, double one, double two) {
@@ -87,9 +75,9 @@ void arithmetic_reference(const char* label) {
   for (int r = 0; r < repetitions; ++r)
     for (int t = 0; t < 2; ++t) {
       set_threads(thread_counts[t]);
-      te[t].push_back(seconds(loop));
+      te[t].push_back(bench::seconds(loop));
     }
-  print_row(label, static_cast<std::size_t>(count), median(te[0]), median(te[1]));
+  print_row(label, static_cast<std::size_t>(count), bench::median(te[0]), bench::median(te[1]));
 }
 
 // As bench_md: uniform points in the unit square, loaded with ids 0..N-1.
@@ -106,16 +94,16 @@ void md_update(std::size_t n) {
     table.rows.push_back({static_cast<double>(i), uniform(), uniform()});
   model.load({{"P", table}});
   set_threads(1);
-  const double first = seconds([&] { model.step(); });  // builds the cell list
+  const double first = bench::seconds([&] { model.step(); });  // builds the cell list
   const int batch = std::max(1, static_cast<int>(min_batch_seconds / first));
   std::vector<double> te[2];
   for (int r = 0; r < repetitions; ++r)
     for (int t = 0; t < 2; ++t) {
       set_threads(thread_counts[t]);
-      seconds([&] { model.step(); }, batch);
-      te[t].push_back(seconds([&] { model.step(); }, batch) / batch);
+      bench::seconds([&] { model.step(); }, batch);
+      te[t].push_back(bench::seconds([&] { model.step(); }, batch) / batch);
     }
-  print_row("md velocity update, Te / s", n, median(te[0]), median(te[1]));
+  print_row("md velocity update, Te / s", n, bench::median(te[0]), bench::median(te[1]));
 }
 
 struct MeltRun {
@@ -130,7 +118,7 @@ MeltRun melt_run(const lj_melt_bench::MeltState& start) {
   MeltRun run;
   std::vector<std::int64_t> order = model.A().ids();
   for (int step = 1; step <= lj_melt_bench::steps; ++step) {
-    const double t = seconds([&] { model.step(); });
+    const double t = bench::seconds([&] { model.step(); });
     run.loop += t;
     if (model.A().ids() != order) {
       order = model.A().ids();
