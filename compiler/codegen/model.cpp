@@ -628,11 +628,11 @@ class ModelEmitter {
       linef("{}.resize({});", buffer, count);
     }
     // Every iteration writes only particle i's value (aliasing saw to that).
-    linef("PARTC_PARALLEL_FOR({}, partc::LoopWork::{})", count, loops.empty() ? "light" : "heavy");
-    linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", i, count);
+    linef("partc::parallel_for({}, partc::LoopWork::{}, [&](std::size_t {}) {{", count,
+          loops.empty() ? "light" : "heavy", i);
     for (const Loop& l : loops) loop(l, st, names);
     assignment(st, names, buffer);
-    line("}");
+    line("});");
     const std::string target_array = array_name(home, st.var);
     if (!buffer.empty()) linef("{}.swap({});", target_array, buffer);
     if (st.var == kAlive) linef("{}.erase_dead();", set_member_[home]);

@@ -1,18 +1,19 @@
 // partc/parallel.hpp: the parallel loop generated kernels use over particles.
 //
-//   PARTC_PARALLEL_FOR(n, work) for (std::size_t i = 0; i < n; ++i) { ... }
+//   partc::parallel_for(n, partc::LoopWork::heavy, [&](std::size_t i) { ... });
 //
-// With OpenMP (-fopenmp) the loop is split statically across threads;
-// without it the macro is empty and the loop is serial. Generated kernels use
-// it only where every iteration writes its own particle's values and reads
-// nothing another iteration writes (the compiler's aliasing analysis decides
-// this), and each particle accumulates its neighbours in a fixed order, so
-// results are bitwise identical for any number of threads.
+// With OpenMP (-fopenmp) large loops are split statically across threads;
+// without it, or for small loops, the loop is plain and serial. Generated
+// kernels use it only where every iteration writes its own particle's values
+// and reads nothing another iteration writes (the compiler's aliasing
+// analysis decides this), and each particle accumulates its neighbours in a
+// fixed order, so results are bitwise identical for any number of threads.
 //
-// Surprise: small loops stay serial. Starting a team of threads costs a few
-// microseconds, more than a cheap pass over a few thousand particles, so the
-// loop runs in parallel only from n >= min_parallel(work): work is `light`
-// for per-particle arithmetic and `heavy` for loops over neighbours.
+// Surprise: small loops never enter OpenMP at all. Starting a team of threads
+// costs microseconds, more than a cheap pass over a few thousand particles,
+// and even an `if (false)` parallel region costs a call; so below
+// min_parallel(work) the body runs in an ordinary loop: `light` for
+// per-particle arithmetic, `heavy` for loops over neighbours.
 #pragma once
 
 #include <cstddef>
@@ -25,12 +26,19 @@ constexpr std::size_t min_parallel(LoopWork work) {
   return work == LoopWork::heavy ? 256 : 8192;
 }
 
-}  // namespace partc
-
+template <class Body>
+void parallel_for(std::size_t n, LoopWork work, Body&& body) {
 #if defined(_OPENMP)
-#define PARTC_PRAGMA(text) _Pragma(#text)
-#define PARTC_PARALLEL_FOR(n, work) \
-  PARTC_PRAGMA(omp parallel for schedule(static) if ((n) >= partc::min_parallel(work)))
+  if (n >= min_parallel(work)) {
+    const auto count = static_cast<long long>(n);  // OpenMP 4.5 wants a signed index
+#pragma omp parallel for schedule(static)
+    for (long long i = 0; i < count; ++i) body(static_cast<std::size_t>(i));
+    return;
+  }
 #else
-#define PARTC_PARALLEL_FOR(n, work)
+  (void)work;
 #endif
+  for (std::size_t i = 0; i < n; ++i) body(i);
+}
+
+}  // namespace partc
