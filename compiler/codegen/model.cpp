@@ -566,8 +566,10 @@ class ModelEmitter {
       dx.visit(acc->condition);
       dx.visit(acc->body);
       const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
-      // A search is asked from p[i]; Verlet lists by i alone; a dense loop computes dx itself.
-      if (fact.kind == SearchFact::Kind::Neighbours && !st.schedule.skin)
+      // A search over another set is asked from p[i]; one over the home set and Verlet
+      // lists by i alone; a dense loop computes dx itself.
+      if (fact.kind == SearchFact::Kind::Neighbours && !st.schedule.skin &&
+          st.labels[acc->label].set != home)
         needed.insert({home, kPosition});
       if (fact.kind == SearchFact::Kind::Dense && dx.dx) {
         needed.insert({home, kPosition});
@@ -787,9 +789,10 @@ class ModelEmitter {
       if (st.schedule.skin)
         linef("{}->for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", lists_.at(&st), i,
               reads_j ? " " + j : "", dx.dx ? " dx" : "");
-      else
-        linef("{}.for_each_near({}[{}], [&](std::size_t{}, const Vec&{}) {{", search_for(l.set, st),
-              home_p, i, reads_j ? " " + j : "", dx.dx ? " dx" : "");
+      else  // a query from the searched set itself goes by index: the search knows its cell
+        linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", search_for(l.set, st),
+              l.set == st.set ? i : fmt::format("{}[{}]", home_p, i), reads_j ? " " + j : "",
+              dx.dx ? " dx" : "");
       out_ += body;
       line("});");
     } else {

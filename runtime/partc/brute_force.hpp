@@ -51,6 +51,9 @@ class BruteForce {
     }
   }
 
+ // Point j of the last build, wrapped into the periodic box.
+  const Vec<D>& point(std::size_t j) const { return points_[j]; }
+
  private:
   Domain<D> domain_{};
   Vec<D> length_{}, half_{};

@@ -96,28 +96,41 @@ class CellGrid {
   // of those cells; exact is std::true_type in exact mode; run passes both to scan.
   template <class Run>
   void for_each_run(const Vec<D>& q, Run&& run) const {
+    const Vec<D> qw = domain_.wrap(q);
+    for_each_run_of_box(qw, qw, [&](std::size_t first, std::size_t last, const Vec<D>& shift,
+                                    auto exact) { run(first, last, qw + shift, exact); });
+  }
+
+  // As for_each_run, for every query point in the box [lo, hi] at once (lo, hi
+  // wrapped into the periodic box): the runs of cells that may hold a point within
+  // reach of any of them, and per run the shift s (0 or +-L per dimension) that
+  // gives a query q its image qs = q + s. Each point's runs are a superset of its
+  // own for_each_run's, in the same order, with the same images: a scan finds the
+  // same points in the same order, and qs is the same bit for bit.
+  template <class Run>
+  void for_each_run_of_box(const Vec<D>& lo, const Vec<D>& hi, Run&& run) const {
     Spans spans;
     spans.count.fill(0);
-    const Vec<D> qw = domain_.wrap(q);
     for (int k = 0; k < D; ++k) {
       const double L = domain_.hi[k] - domain_.lo[k];
       if (!domain_.periodic[k]) {
-        add_span(spans, k, q[k]);
+        add_span(spans, k, lo[k], hi[k], 0.0);
       } else if (exact_domain_.periodic[k]) {
-        spans.span[k][spans.count[k]++] = {qw[k], 0, n_[k] - 1};
+        spans.span[k][spans.count[k]++] = {0.0, 0, n_[k] - 1};
       } else {
-        // The image s = +1 (points seen across hi) matters only if q + reach reaches past hi,
-        // s = -1 only if q - reach reaches below lo; the tests are exact (see header).
-        if (qw[k] - L + reach_ >= domain_.lo[k]) add_span(spans, k, qw[k] - L);
-        add_span(spans, k, qw[k]);
-        if (!(qw[k] + L - reach_ > domain_.hi[k])) add_span(spans, k, qw[k] + L);
+        // The image q - L (q near hi meeting points near lo) matters only if some
+        // q - L + reach reaches lo, q + L only if some q + L - reach is below hi; the
+        // tests are exact (see header) and monotone in q, so the box's edge decides.
+        if (hi[k] - L + reach_ >= domain_.lo[k]) add_span(spans, k, lo[k], hi[k], -L);
+        add_span(spans, k, lo[k], hi[k], 0.0);
+        if (!(lo[k] + L - reach_ > domain_.hi[k])) add_span(spans, k, lo[k], hi[k], L);
       }
     }
-    Vec<D> qs = qw;
+    Vec<D> shift{};
     if (exact_)
-      visit<0, std::true_type>(spans, 0, qs, run);
+      visit<0, std::true_type>(spans, 0, shift, run);
     else
-      visit<0, std::false_type>(spans, 0, qs, run);
+      visit<0, std::false_type>(spans, 0, shift, run);
   }
 
   // The hot loop of every query: calls f(j, dx) for each candidate j, advance(j),
@@ -145,9 +158,9 @@ class CellGrid {
   }
 
  private:
-  // Per dimension: up to three query images, each with its range of cell coordinates.
+  // Per dimension: up to three query images (shifts), each with its range of cell coordinates.
   struct Span {
-    double qs;
+    double shift;
     std::size_t first, last;
   };
   struct Spans {
@@ -186,20 +199,22 @@ class CellGrid {
     return static_cast<std::size_t>(static_cast<std::int64_t>(t));  // signed: one instruction
   }
 
-  void add_span(Spans& spans, int k, double qs) const {
-    spans.span[k][spans.count[k]++] = {qs, coord(k, qs - reach_), coord(k, qs + reach_)};
+  // The cells within reach of [lo + shift, hi + shift] in dimension k.
+  void add_span(Spans& spans, int k, double lo, double hi, double shift) const {
+    spans.span[k][spans.count[k]++] = {shift, coord(k, (lo + shift) - reach_),
+                                       coord(k, (hi + shift) + reach_)};
   }
 
   template <int K, class Exact, class Run>
-  void visit(const Spans& spans, std::size_t base, Vec<D>& qs, Run& run) const {
+  void visit(const Spans& spans, std::size_t base, Vec<D>& shift, Run& run) const {
     for (int m = 0; m < spans.count[K]; ++m) {
       const Span& s = spans.span[K][m];
-      qs[K] = s.qs;
+      shift[K] = s.shift;
       if constexpr (K + 1 == D) {
-        run(base + s.first, base + s.last, static_cast<const Vec<D>&>(qs), Exact{});
+        run(base + s.first, base + s.last, static_cast<const Vec<D>&>(shift), Exact{});
       } else {
         for (std::size_t i = s.first; i <= s.last; ++i)
-          visit<K + 1, Exact>(spans, base + i * stride_[K], qs, run);
+          visit<K + 1, Exact>(spans, base + i * stride_[K], shift, run);
       }
     }
   }

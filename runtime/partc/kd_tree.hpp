@@ -134,6 +134,9 @@ class KdTree {
     }
   }
 
+  // Point k of the last build (sorted order), wrapped into the periodic box.
+  const Vec<D>& point(std::size_t k) const { return points_[k]; }
+
   // f(j, point) for every point with lo <= point <= hi componentwise (point as
   // stored: wrapped into the periodic box).
   template <class F>

@@ -100,6 +100,19 @@ class NeighbourSearch {
       brute_force_.for_each_near(q, f);
   }
 
+  // As for_each_near(p[i], f) for particle i of the set as of the last build
+  // (after its reorder): the same neighbours, order and dx, found faster on the
+  // cell-list path (OrderedCellList::for_each_near(k, f)).
+  template <class F>
+  void for_each_near(std::size_t i, F&& f) const {
+    if (kind_ == Kind::cell_list)
+      cell_list_.for_each_near(i, f);
+    else if (kind_ == Kind::kd_tree)
+      kd_tree_.for_each_near(kd_tree_.point(i), f);
+    else
+      brute_force_.for_each_near(brute_force_.point(i), f);
+  }
+
   Kind kind() const { return kind_; }
   std::size_t cell_count() const { return kind_ == Kind::cell_list ? cell_list_.cell_count() : 0; }
 

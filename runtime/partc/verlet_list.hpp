@@ -136,8 +136,7 @@ class VerletList {
     start_[0] = 0;
     neighbours_.clear();
     for (std::size_t i = 0; i < at_build_.size(); ++i) {
-      search.for_each_near(at_build_[i],
-                           [this](std::size_t j, const Vec<D>&) { neighbours_.push_back(j); });
+      search.for_each_near(i, [this](std::size_t j, const Vec<D>&) { neighbours_.push_back(j); });
       start_[i + 1] = neighbours_.size();
     }
     domain_ = domain;

@@ -40,6 +40,36 @@ bool is_permutation_of_indices(const std::vector<std::size_t>& order, std::size_
   return sorted.size() == n;
 }
 
+// Queries by index, for_each_near(k, f), asked about each of the structure's own
+// points (`points`, in its order): against the reference, and the same (j, dx),
+// bit for bit and in the same order, as the query by position.
+template <int D, class Search>
+void check_member_queries(const std::string& name, const Case<D>& c,
+                          const std::vector<Vec<D>>& points, const Search& search) {
+  check_no_errors(name + " by index",
+                  disagreements(c.domain, c.radius, points, points,
+                                [&](std::size_t k, const auto& report) {
+                                  search.for_each_near(k, report);
+                                }));
+  using Found = std::vector<std::pair<std::size_t, Vec<D>>>;
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    Found by_index, by_position;
+    search.for_each_near(k, [&](std::size_t j, const Vec<D>& dx) { by_index.push_back({j, dx}); });
+    search.for_each_near(points[k],
+                         [&](std::size_t j, const Vec<D>& dx) { by_position.push_back({j, dx}); });
+    const bool same = by_index.size() == by_position.size() &&
+                      std::equal(by_index.begin(), by_index.end(), by_position.begin(),
+                                 [](const auto& a, const auto& b) {
+                                   return a.first == b.first &&
+                                          std::memcmp(&a.second, &b.second, sizeof a.second) == 0;
+                                 });
+    differing += !same;
+  }
+  INFO(name << ": queries by index that differ from the query by position");
+  CHECK(differing == 0);
+}
+
 // Checks every structure (and the facade on both of its paths) against the reference.
 template <int D>
 void check_all_structures(const Case<D>& c) {
@@ -66,6 +96,7 @@ void check_all_structures(const Case<D>& c) {
       for (std::size_t b = a + 1; b < order.size(); ++b)
         if (sorted[a] == sorted[b]) REQUIRE(order[a] < order[b]);
     check_no_errors("OrderedCellList", disagreements(c, sorted, s));
+    check_member_queries("OrderedCellList", c, sorted, s);
   }
   using Search = partc::NeighbourSearch<D>;
   const std::vector<std::pair<std::string, Search>> searches = {
@@ -88,6 +119,7 @@ void check_all_structures(const Case<D>& c) {
       REQUIRE(std::memcmp(&set.positions()[k], &original, sizeof original) == 0);  // NaN too
     }
     check_no_errors(name, disagreements(c, set.positions(), s));
+    check_member_queries(name, c, set.positions(), s);
   }
 }
 
