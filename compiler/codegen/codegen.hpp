@@ -5,6 +5,7 @@
 
 #include "analysis/aliasing.hpp"
 #include "analysis/neighbourhood.hpp"
+#include "analysis/symmetry.hpp"
 #include "ir/ir.hpp"
 #include "support/source.hpp"
 
@@ -19,6 +20,7 @@ struct CodegenOptions {
 struct ModelFacts {
   AliasReport aliasing;
   NeighbourhoodReport neighbourhoods;
+  PairSymmetryReport symmetry;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

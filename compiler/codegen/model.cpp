@@ -596,9 +596,12 @@ class ModelEmitter {
     // The comment: the .part line and the decisions behind the kernel.
     linef("// {}", source_line(st.loc));
     linef("//   {}", source_text(st.loc));
-    for (const Accumulate* acc : uses.accumulations)
+    for (const Accumulate* acc : uses.accumulations) {
       comment(fmt::format("{}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
-            facts_.neighbourhoods.at(acc->id).reason));
+                          facts_.neighbourhoods.at(acc->id).reason));
+      if (half_lists(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
+        comment("  each pair once, from half Verlet lists: " + facts_.symmetry.at(acc->id).reason);
+    }
     comment(k.alias->reason);
     linef("void {}() {{", k.name);
 
@@ -629,10 +632,17 @@ class ModelEmitter {
       buffer = buffer_member(home, st.var);
       linef("{}.resize({});", buffer, count);
     }
+    std::vector<const Loop*> per_particle;
+    for (const Loop& l : loops) {
+      if (l.kind == SearchFact::Kind::Neighbours && half_lists(st))
+        pair_pass(l, st, names, count, locals);
+      else
+        per_particle.push_back(&l);
+    }
     // Every iteration writes only particle i's value (aliasing saw to that).
     linef("partc::parallel_for({}, partc::LoopWork::{}, [&](std::size_t {}) {{", count,
-          loops.empty() ? "light" : "heavy", i);
-    for (const Loop& l : loops) loop(l, st, names);
+          per_particle.empty() ? "light" : "heavy", i);
+    for (const Loop* l : per_particle) loop(*l, st, names);
     assignment(st, names, buffer);
     line("});");
     const std::string target_array = array_name(home, st.var);
@@ -694,6 +704,22 @@ class ModelEmitter {
     return fmt::format("std::max({}, std::numeric_limits<double>::min())", fmt::join(parts, " + "));
   }
 
+  // Newton's third law: a statement with Verlet lists whose every neighbour sum
+  // gives j the term i gets, or its negative (analysis/symmetry.cpp), takes each
+  // pair once from half lists.
+  bool half_lists(const Statement& st) const {
+    if (!st.schedule.skin) return false;
+    StatementUses uses;
+    uses.visit(st.value);
+    bool any = false;
+    for (const Accumulate* acc : uses.accumulations) {
+      if (facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours) continue;
+      if (!facts_.symmetry.at(acc->id).newton) return false;
+      any = true;
+    }
+    return any;
+  }
+
   // Verlet lists: reused while no particle has moved half the skin since
   // they were built; a rebuild may reorder the set, like a search build.
   void refresh_lists(const Statement& st, const std::vector<std::string>& radii,
@@ -703,7 +729,8 @@ class ModelEmitter {
     const std::string& lists = lists_.at(&st);
     const std::string skin = expression(st.schedule.skin, names);
     linef("const double {} = {};", local, radius);
-    linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1});", lists, skin);
+    linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1}{2});", lists, skin,
+          half_lists(st) ? ", partc::VerletPairs::half" : "");
     linef("if ({}->update(domain_, {}, {})) ++{};  // rebuilt: {} may be reordered", lists, local,
           set_member_[st.set], epoch_[st.set], m_.sets[st.set].name);
   }
@@ -805,6 +832,53 @@ class ModelEmitter {
     }
   }
 
+  // The sums of a half-list loop, pair by pair, into per-particle member
+  // vectors (kept between steps for their memory) that the particle loop reads.
+  void pair_pass(const Loop& l, const Statement& st, ExpressionNames& names,
+                 const std::string& count, NameTable& locals) {
+    const std::string i = names.labels[0];
+    const std::string j = names.labels[l.members.front()->label];
+    UsesDx dx;
+    for (const Accumulate* acc : l.members) {
+      dx.visit(acc->condition);
+      dx.visit(acc->body);
+      const std::string sums = pair_sums_member(*acc);
+      linef("{}.assign({}, {});", sums, count, identity(*acc));
+      names.accumulators[acc->id] = sums + "[" + i + "]";
+    }
+    ExpressionNames inner = names;
+    inner.dx_norm = dx.norm ? "dx_norm" : "";
+    const std::string term = locals.fresh("term");
+    line("// Each pair once (Newton's third law): i and j get the same term, or opposite ones.");
+    linef("{}->for_each_pair([&](std::size_t {}, std::size_t {}, const Vec&{}) {{", lists_.at(&st), i,
+          j, dx.dx ? " dx" : "");
+    if (dx.norm) line("const double dx_norm = partc::norm(dx);");
+    for (const Accumulate* acc : l.members) {
+      const std::string& sums = pair_sums_.at(acc->id).first;
+      if (acc->condition) linef("if ({}) {{", expression(acc->condition, inner));
+      if (acc->reduction == Reduction::Count) {
+        linef("++{}[{}];", sums, i);
+        linef("if ({1} != {2}) ++{0}[{2}];", sums, i, j);
+      } else {
+        linef("const {} {} = {};", cpp_type(acc->type), term, expression(acc->body, inner));
+        linef("{}[{}] += {};", sums, i, term);
+        linef("if ({2} != {1}) {0}[{2}] {3}= {4};", sums, i, j,
+              facts_.symmetry.at(acc->id).sign > 0 ? "+" : "-", term);
+      }
+      if (acc->condition) line("}");
+    }
+    line("});");
+  }
+
+  std::string pair_sums_member(const Accumulate& acc) {
+    auto it = pair_sums_.find(acc.id);
+    if (it != pair_sums_.end()) return it->second.first;
+    const std::string name = members_.fresh(std::string(reduction_name(acc.reduction)) + "_pairs_");
+    const std::string element = acc.reduction == Reduction::Count ? "std::int64_t" : cpp_type(acc.type);
+    pair_sums_[acc.id] = {name, element};
+    return name;
+  }
+
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer) {
     const std::string target = names.array(st.set, st.var) + "[" + names.labels[0] + "]";
     const bool wrap = st.var == kPosition &&
@@ -867,6 +941,8 @@ class ModelEmitter {
     for (const auto& [st, lists] : lists_)
       linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
             source_text(st->schedule.skin->loc));
+    for (const auto& [id, sums] : pair_sums_)
+      linef("std::vector<{}> {};  // per particle, a half-list sum", sums.second, sums.first);
     for (const auto& [key, buffer] : buffers_)
       linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second, buffer.first,
             m_.sets[key.first].vars[key.second].name);
@@ -885,6 +961,7 @@ class ModelEmitter {
   std::vector<Kernel> kernels_;
   std::vector<StageKind> kernel_stage_;
   std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element
+  std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
 };
 
 }  // namespace

@@ -18,6 +18,7 @@ Compilation analyse(const SourceFile& file) {
   // Facts the code generator acts on. Each pass reads the IR only.
   c.facts.aliasing = detect_aliasing(c.model);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
+  c.facts.symmetry = find_pair_symmetry(c.model);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
   return c;
@@ -57,6 +58,11 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
                            st.labels[acc->label].name, fact.reason);
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
+        const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
+        out += std::string("    pairs: ") +
+               (pairs.newton ? "each pair once with Verlet lists (Newton's third law): "
+                             : "both ways: ") +
+               pairs.reason + "\n";
         if (st.schedule.skin)
           out += "    schedule: Verlet lists with skin " +
                  std::string(file.slice(st.schedule.skin->loc)) +

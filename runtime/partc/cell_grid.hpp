@@ -67,6 +67,8 @@ class CellGrid {
   }
 
   std::size_t cell_count() const { return cell_count_; }
+  // Cells along dimension k.
+  std::size_t cells_along(int k) const { return n_[k]; }
 
   // The fraction of uniformly spread points a query examines: per dimension, the
   // cells an interval of 2 * reach overlaps on average, out of all cells.

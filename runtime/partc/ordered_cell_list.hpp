@@ -67,12 +67,28 @@ class OrderedCellList {
   // As for_each_near(point(k), f), for point k of the last build (sorted order).
   template <class F>
   void for_each_near(std::size_t k, F&& f) const {
-    if (!grid_.shifts_suffice()) return for_each_near(points_[k], f);
-    const std::size_t cell = cell_of_sorted_[k];
-    for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r)
-      grid_.scan(std::false_type{}, runs_[r].first, runs_[r].stop, [](std::size_t j) { return j + 1; },
-                 points_, points_[k] + runs_[r].shift, f);
+    for_each_near_from(k, 0, f);
   }
+
+  // The same, for the points j > k only: each pair of points once, from its
+  // first point. About half the work: runs of points before k are skipped.
+  template <class F>
+  void for_each_near_after(std::size_t k, F&& f) const {
+    for_each_near_from(k, k + 1, f);
+  }
+
+  // Where each plane of cells along the first dimension begins, and its end:
+  // plane a holds points plane_starts()[a] .. plane_starts()[a+1]-1. Cells are
+  // at least the radius wide, so points near a point of plane a lie in planes
+  // a - 1, a, a + 1 (mod the plane count where periodic), up to rounding at
+  // the planes' edges: a caller relying on it checks its pairs.
+  std::vector<std::size_t> plane_starts() const {
+    const std::size_t planes = grid_.cells_along(0), per_plane = grid_.cell_count() / planes;
+    std::vector<std::size_t> starts(planes + 1);
+    for (std::size_t a = 0; a <= planes; ++a) starts[a] = start_[a * per_plane];
+    return starts;
+  }
+  bool shifts_suffice() const { return grid_.shifts_suffice(); }
 
   // The mean number of points a query examines, over the points of the last
   // build (each cell's first point stands for all of its points): how much a
@@ -98,6 +114,23 @@ class OrderedCellList {
   const Vec<D>& point(std::size_t k) const { return points_[k]; }
 
  private:
+  template <class F>
+  void for_each_near_from(std::size_t k, std::size_t from, F& f) const {
+    if (!grid_.shifts_suffice()) {
+      for_each_near(points_[k], [&](std::size_t j, const Vec<D>& dx) {
+        if (j >= from) f(j, dx);
+      });
+      return;
+    }
+    const std::size_t cell = cell_of_sorted_[k];
+    for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r) {
+      const std::size_t first = std::max(runs_[r].first, from);
+      if (first < runs_[r].stop)
+        grid_.scan(std::false_type{}, first, runs_[r].stop, [](std::size_t j) { return j + 1; },
+                   points_, points_[k] + runs_[r].shift, f);
+    }
+  }
+
   // Points first .. stop-1, seen from a query q as neighbours of q + shift.
   struct Run {
     std::size_t first, stop;

@@ -1,6 +1,6 @@
 // The analyses' facts for small models: which accumulations are
-// neighbourhood sums and with what radius, and which statements are
-// buffered.
+// neighbourhood sums and with what radius, which statements are buffered,
+// and which sums may take each pair once.
 #include <catch2/catch.hpp>
 
 #include "driver/pipeline.hpp"
@@ -8,15 +8,18 @@
 
 namespace {
 
-partc::Compilation compile(const std::string& step_body) {
-  const std::string text =
-      "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\n"
-      "param r: real = 0.1\nconst r2 = r * r\n"
-      "particles P(10) {\n  u: real = 0\n  w: real = 1\n}\n"
-      "step {\n" + step_body + "\n}\n";
+partc::Compilation compile_text(const std::string& text) {
   static std::vector<std::unique_ptr<partc::SourceFile>> keep;  // facts point into the text
   keep.push_back(std::make_unique<partc::SourceFile>("t.part", text));
   return partc::analyse(*keep.back());
+}
+
+partc::Compilation compile(const std::string& step_body) {
+  return compile_text(
+      "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\n"
+      "param r: real = 0.1\nconst r2 = r * r\n"
+      "particles P(10) {\n  u: real = 0\n  w: real = 1\n}\n"
+      "step {\n" + step_body + "\n}\n");
 }
 
 // "dense", or the radius expression of the first accumulation.
@@ -29,6 +32,27 @@ std::string search_of(const std::string& step_body) {
 
 bool buffered(const std::string& step_body) {
   return compile(step_body).facts.aliasing.at(0).at(0).buffered;
+}
+
+// The pair-symmetry fact of the first accumulation of a statement of set P,
+// in a 2-d model with the variables and functions the cases need.
+partc::PairSymmetryFact symmetry_of(const std::string& statement) {
+  const partc::Compilation c = compile_text(
+      "model m\ndim 2\ndomain lo=(0, 0) hi=(1, 1)\n"
+      "param rc: real = 0.1\n"
+      "fn lj_force(s: real) = 24 * pow(s, 4) * (2 * pow(s, 3) - 1)\n"
+      "fn W(q: real) = exp(-q * q)\n"
+      "particles P(10) {\n  v: vec = 0\n  r: real = 0.01\n  m: real = 1\n  h: real = 0.1\n"
+      "  u: real = 0\n  n: int = 0\n  f: vec = 0\n}\n"
+      "particles Q(5) {\n  m: real = 1\n}\n"
+      "step P {\n" + statement + "\n}\n");
+  return c.facts.symmetry.at(0);
+}
+
+// +1 or -1: the sign j's share takes; 0: each pair is evaluated both ways.
+int newton_sign(const std::string& statement) {
+  const partc::PairSymmetryFact fact = symmetry_of(statement);
+  return fact.newton ? fact.sign : 0;
 }
 
 }  // namespace
@@ -68,4 +92,62 @@ TEST_CASE("aliasing: reading another particle's copy of the target buffers", "[a
   CHECK_FALSE(buffered("u[i] = 2 * u[i] + sum(j, |dx| < r, w[j])"));
   CHECK_FALSE(buffered("w[i] = sum(j, |dx| < r, u[j])"));
   CHECK_FALSE(buffered("p[i] += vec(u[i], 0, 0)"));
+}
+
+TEST_CASE("symmetry: odd terms under an even condition take each pair once", "[analysis]") {
+  // The md force and the Lennard-Jones force (through a user function).
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc and |dx| > 0, -exp(-|dx|) * dx / |dx|)") == -1);
+  CHECK(newton_sign("f[i] = sum(j, dot(dx, dx) < rc * rc and dot(dx, dx) > 0, "
+                    "-lj_force(1 / dot(dx, dx)) * dx)") == -1);
+  // DEM contacts: the bound and the overlap are symmetric in r[i] + r[j].
+  CHECK(newton_sign("f[i] = sum(j, |dx| < r[i] + r[j] and |dx| > 0, "
+                    "-(r[i] + r[j] - |dx|) * dx / |dx|)") == -1);
+  // A difference of twins changes sign: v[i] - v[j].
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc, v[j] - v[i])") == -1);
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc, vec(dx.y, -dx.x) * W(|dx|))") == -1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, sin(dx.x))") == -1);
+}
+
+TEST_CASE("symmetry: even terms under an even condition take each pair once", "[analysis]") {
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, exp(-|dx|))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] * m[j] * exp(-|dx|))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < max(h[i], h[j]), W(|dx| / min(h[i], h[j])))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc and id[i] != id[j], dot(dx, dx) + abs(dx.x))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc and dx.x == dx.y, cos(dx.y))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, 1)") == 1);
+  CHECK(newton_sign("u[i] = sum(j, m[i] + m[j])") == 1);  // no condition: every pair
+  CHECK(newton_sign("n[i] = count(j, |dx| < r[i] + r[j])") == 1);
+  CHECK(newton_sign("n[i] = count(j, |dx| < rc and id[j] != id[i])") == 1);
+}
+
+TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
+  // One particle's variable without its twin.
+  CHECK(newton_sign("u[i] = sum(j, |dx| < h[i], m[j] * W(|dx|))") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[j] * W(|dx|))") == 0);
+  CHECK(newton_sign("n[i] = count(j, |dx| < r[i])") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] / m[j])") == 0);  // T gives m[j] / m[i]
+  // Mixed parity, in the term or the condition.
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc, dx + vec(1, 0))") == 0);
+  CHECK(newton_sign("u[i] = sum(j, dx.x > 0 and |dx| < 1, 1.0)") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc and dx.x == 0.5, 1.0)") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, lj_force(dx.x))") == 0);
+  // Not a sum, or not over i's own set.
+  CHECK(newton_sign("u[i] = min(j, |dx| < rc, |dx|)") == 0);
+  CHECK(newton_sign("u[i] = max(j, |dx| < rc, m[i] * m[j])") == 0);
+  CHECK(newton_sign("u[i] = sum(j in Q, |dx| < rc, exp(-|dx|))") == 0);
+  CHECK(newton_sign("u[i] = sum(j in Q, |dx| < rc, m[i] * m[j])") == 0);
+}
+
+TEST_CASE("symmetry: the reasons say what was found, in the model's terms", "[analysis]") {
+  CHECK(symmetry_of("f[i] = sum(j, |dx| < rc, -dx)").reason ==
+        "the term is antisymmetric and the condition symmetric under i <-> j, dx -> -dx: j takes "
+        "-term");
+  CHECK(symmetry_of("u[i] = sum(j, |dx| < rc, m[j] * W(|dx|))").reason ==
+        "the term reads m[j] alone, not paired symmetrically with m[i]");
+  CHECK(symmetry_of("u[i] = sum(k, dx.x > 0 and |dx| < 1, 1.0)").reason ==
+        "the condition is not symmetric under i <-> k, dx -> -dx");
+  CHECK(symmetry_of("u[i] = min(j, |dx| < rc, |dx|)").reason ==
+        "min is not a sum: only sums and counts add a pair's term to both particles");
+  CHECK(symmetry_of("u[i] = sum(j in Q, |dx| < rc, m[j])").reason ==
+        "j ranges over Q, not P: only i takes the term");
 }

@@ -1,7 +1,8 @@
 // Every search structure a schedule can choose gives the same sums
 // (tests/e2e/search_choices.part), checked against a brute-force loop over
 // all pairs written here, while the particles move and Verlet lists are
-// reused and rebuilt.
+// reused and rebuilt; so do half Verlet lists (each pair once), for an odd
+// force, an even count and an even weighted sum.
 #include <catch2/catch.hpp>
 
 #include "reference.hpp"
@@ -12,18 +13,28 @@ namespace {
 using reference::Vec2;
 using Model = SearchChoices;
 
-// The force of the model, from positions by id, periodic in x only.
-std::vector<Vec2> reference_force(const std::vector<Vec2>& p, double r) {
-  std::vector<Vec2> f(p.size(), Vec2{0, 0});
+// The sums of the model, from positions (and m) by id, periodic in x only.
+struct Sums {
+  std::vector<Vec2> force;
+  std::vector<std::int64_t> close;
+  std::vector<double> weight;
+};
+
+Sums reference_sums(const std::vector<Vec2>& p, const std::vector<double>& m, double r) {
+  Sums sums{std::vector<Vec2>(p.size(), Vec2{0, 0}), std::vector<std::int64_t>(p.size(), 0),
+            std::vector<double>(p.size(), 0.0)};
   for (std::size_t i = 0; i < p.size(); ++i)
     for (std::size_t j = 0; j < p.size(); ++j) {
       Vec2 d{p[j][0] - p[i][0], p[j][1] - p[i][1]};
       d[0] -= std::round(d[0]);  // periodic in x, box length 1
       const double s = reference::norm(d);
-      if (s < r && s > 0)
-        for (int k = 0; k < 2; ++k) f[i][k] += -(1 - s / r) * d[k] / s;
+      if (s >= r) continue;
+      ++sums.close[i];
+      sums.weight[i] += m[i] * m[j] * (1 - s / r);
+      if (s > 0)
+        for (int k = 0; k < 2; ++k) sums.force[i][k] += -(1 - s / r) * d[k] / s;
     }
-  return f;
+  return sums;
 }
 
 double worst(const std::vector<partc::Vec<2>>& got, const std::vector<Vec2>& want) {
@@ -42,8 +53,10 @@ TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with br
   model.init();
   for (int step = 0; step < 12; ++step) {
     const auto before = reference::positions_by_id(model.P());
+    const auto m = reference::values_by_id<Model::P_m>(model.P());
     model.step();  // forces at `before`, then the particles move
-    const auto want = reference_force(before, model.params().r);
+    const Sums sums = reference_sums(before, m, model.params().r);
+    const std::vector<Vec2>& want = sums.force;
     double scale = 0;
     for (const Vec2& f : want) scale = std::max(scale, reference::norm(f));
     REQUIRE(scale > 0);
@@ -53,5 +66,12 @@ TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with br
     CHECK(worst(reference::values_by_id<Model::P_f_cells>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_tree>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_lists>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_f_pairs>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::values_by_id<Model::P_close>(model.P()) == sums.close);
+    const auto weight = reference::values_by_id<Model::P_weight>(model.P());
+    double weight_error = 0;
+    for (std::size_t k = 0; k < weight.size(); ++k)
+      weight_error = std::max(weight_error, std::abs(weight[k] - sums.weight[k]) / sums.weight[k]);
+    CHECK(weight_error <= 1e-12);
   }
 }

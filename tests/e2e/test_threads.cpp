@@ -9,6 +9,7 @@
 #include "aliasing.hpp"
 #include "md.hpp"
 #include "reference.hpp"
+#include "search_choices.hpp"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -17,13 +18,14 @@ namespace {
 
 template <class Model>
 Model run_with_threads(int threads, std::int64_t n, int steps) {
-  omp_set_num_threads(threads);
-  Model model;
-  model.params().N = n;
-  model.set_seed(5);
-  model.init();
-  for (int s = 0; s < steps; ++s) model.step();
-  return model;
+  return partc::with_threads(threads, [&] {
+    Model model;
+    model.params().N = n;
+    model.set_seed(5);
+    model.init();
+    for (int s = 0; s < steps; ++s) model.step();
+    return model;
+  });
 }
 
 // Same bits: positions and every variable, particle by particle (by id).
@@ -63,6 +65,13 @@ TEST_CASE("md.part: 1 and 2 threads agree to the bit", "[e2e][threads]") {
 TEST_CASE("aliasing.part (buffered updates, counts): 1 and 2 threads agree", "[e2e][threads]") {
   const Aliasing one = run_with_threads<Aliasing>(1, 5000, 3);
   const Aliasing two = run_with_threads<Aliasing>(2, 5000, 3);
+  CHECK(bitwise_equal(one.P(), two.P()));
+}
+
+TEST_CASE("search_choices.part (half Verlet lists in parallel phases): 1 and 2 threads agree",
+          "[e2e][threads]") {
+  const SearchChoices one = run_with_threads<SearchChoices>(1, 4000, 8);
+  const SearchChoices two = run_with_threads<SearchChoices>(2, 4000, 8);
   CHECK(bitwise_equal(one.P(), two.P()));
 }
 

@@ -1,0 +1,293 @@
+// Decides, per accumulation, whether one evaluation of its term per
+// unordered pair of particles can serve both particles of the pair
+// (Newton's third law).
+//
+// Exchanging the pair, T: i <-> j with dx -> -dx, turns the term particle i
+// receives from j into the term j receives from i. If T leaves the condition
+// unchanged and leaves the term unchanged (even) or negates it (odd), a loop
+// over pairs {i, j} can add the term to i and +-term to j. Parity is decided
+// bottom-up: dx is odd, values common to all pairs (literals, params, consts)
+// are even, and the operations combine parities as in algebra (odd * odd is
+// even, |odd| is even, even + odd is neither). A particle variable read
+// through one label is neither on its own, but a commutative operation on it
+// and its twin read through the other label is even -- r[i] + r[j],
+// m[i] * m[j], max(h[i], h[j]) -- and a difference of twins, v[j] - v[i], is
+// odd. User functions are pure, so a call with even arguments is even; their
+// bodies are not looked at. The rules are sound, not complete: what they
+// cannot show symmetric is evaluated both ways, which is always correct.
+//
+// Only sums and counts over the statement's own set qualify: a pair's term is
+// added into both particles' totals, which a min or max does not do, and a
+// particle of another set computes no such total.
+#include "analysis/symmetry.hpp"
+
+#include <fmt/format.h>
+
+#include "ir/visitor.hpp"
+#include "support/diagnostics.hpp"
+
+namespace partc {
+
+namespace {
+
+using ir::Expr;
+
+enum class Parity { Even, Odd, Neither };
+
+// A product's or quotient's parity.
+Parity times(Parity a, Parity b) {
+  if (a == Parity::Neither || b == Parity::Neither) return Parity::Neither;
+  return a == b ? Parity::Even : Parity::Odd;
+}
+
+// A sum's parity, or a vec's: its parts must all change the same way.
+Parity alike(Parity a, Parity b) { return a == b ? a : Parity::Neither; }
+
+bool is_commutative(ir::BinaryOp op) {
+  using ir::BinaryOp;
+  return op == BinaryOp::Add || op == BinaryOp::Mul || op == BinaryOp::Eq || op == BinaryOp::Ne ||
+         op == BinaryOp::And || op == BinaryOp::Or;
+}
+
+// Parities under the exchange of the statement's label (0) with the label
+// `j` of one accumulation.
+class PairExchange {
+ public:
+  explicit PairExchange(int j) : j_(j) {}
+
+  // The innermost expression found to be neither, first in evaluation order:
+  // where the asymmetry starts, for the reason.
+  Expr culprit;
+
+  Parity parity(const Expr& e) {
+    switch (e->kind) {
+      case ir::ExprKind::Literal:
+      case ir::ExprKind::ParamRef:
+      case ir::ExprKind::ConstRef: return Parity::Even;
+      case ir::ExprKind::Dx: return Parity::Odd;
+      case ir::ExprKind::VarRef:
+        return neither(e);  // one particle's value, unless twinned above
+      // -x changes as x does; `not b` as b does (a bool is never odd).
+      case ir::ExprKind::Unary: return parity(ir::as<ir::Unary>(e)->operand);
+      case ir::ExprKind::Binary: return binary(*ir::as<ir::Binary>(e), e);
+      case ir::ExprKind::Call: return call(*ir::as<ir::Call>(e), e);
+      case ir::ExprKind::MakeVec: {
+        const auto& components = ir::as<ir::MakeVec>(e)->components;
+        Parity p = parity(components[0]);
+        for (std::size_t k = 1; k < components.size(); ++k) p = alike(p, parity(components[k]));
+        return found(e, p);
+      }
+      case ir::ExprKind::Component: return parity(ir::as<ir::Component>(e)->vec);
+      case ir::ExprKind::FnCall: return found(e, all_even(ir::as<ir::FnCall>(e)->args));
+      // Random draws are rejected in accumulations by sema, nested ones too,
+      // and function arguments exist only in function bodies.
+      case ir::ExprKind::Random:
+      case ir::ExprKind::Accumulate:
+      case ir::ExprKind::FnArg: return neither(e);
+    }
+    internal_error("PairExchange: unknown expression kind");
+  }
+
+ private:
+  Parity neither(const Expr& e) {
+    if (!culprit) culprit = e;
+    return Parity::Neither;
+  }
+  Parity found(const Expr& e, Parity p) { return p == Parity::Neither ? neither(e) : p; }
+
+  // Pure functions of values T leaves alone are left alone too.
+  Parity all_even(const std::vector<Expr>& args) {
+    Parity p = Parity::Even;
+    for (const Expr& a : args)
+      if (parity(a) != Parity::Even) p = Parity::Neither;
+    return p;
+  }
+
+  Parity binary(const ir::Binary& b, const Expr& self) {
+    // T turns `a op b` into `b op a` when b is a's twin.
+    if (twins(b.lhs, b.rhs)) {
+      if (is_commutative(b.op)) return Parity::Even;
+      if (b.op == ir::BinaryOp::Sub) return Parity::Odd;
+    }
+    const Parity l = parity(b.lhs), r = parity(b.rhs);
+    switch (b.op) {
+      case ir::BinaryOp::Add:
+      case ir::BinaryOp::Sub: return found(self, alike(l, r));
+      case ir::BinaryOp::Mul:
+      case ir::BinaryOp::Div: return found(self, times(l, r));
+      // -a == -b exactly when a == b.
+      case ir::BinaryOp::Eq:
+      case ir::BinaryOp::Ne:
+        return found(self, alike(l, r) == Parity::Neither ? Parity::Neither : Parity::Even);
+      // An odd operand would turn < into >; and/or take bools, never odd.
+      default:
+        return found(self, l == Parity::Even && r == Parity::Even ? Parity::Even : Parity::Neither);
+    }
+  }
+
+  Parity call(const ir::Call& c, const Expr& self) {
+    // T turns min(a, b) into min(b, a) when b is a's twin.
+    if ((c.fn == ir::Function::Min || c.fn == ir::Function::Max) && twins(c.args[0], c.args[1]))
+      return Parity::Even;
+    switch (c.fn) {
+      // |-x| = |x|, cos(-x) = cos(x).
+      case ir::Function::Norm:
+      case ir::Function::Abs:
+      case ir::Function::Cos: {
+        const Parity p = parity(c.args[0]);
+        return found(self, p == Parity::Neither ? Parity::Neither : Parity::Even);
+      }
+      case ir::Function::Sin: return parity(c.args[0]);  // sin(-x) = -sin(x)
+      case ir::Function::Dot: return found(self, times(parity(c.args[0]), parity(c.args[1])));
+      default: return found(self, all_even(c.args));
+    }
+  }
+
+  int exchanged(int label) const { return label == 0 ? j_ : label == j_ ? 0 : label; }
+
+  bool all_twins(const std::vector<Expr>& a, const std::vector<Expr>& b) const {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (!twins(a[k], b[k])) return false;
+    return true;
+  }
+
+  // Whether b is a with labels i and j exchanged, neither holding dx: then
+  // T maps a to b and b to a.
+  bool twins(const Expr& a, const Expr& b) const {
+    if (a->kind != b->kind || a->type != b->type) return false;
+    switch (a->kind) {
+      case ir::ExprKind::Literal:
+        return ir::as<ir::Literal>(a)->value == ir::as<ir::Literal>(b)->value;
+      case ir::ExprKind::ParamRef:
+        return ir::as<ir::ParamRef>(a)->param == ir::as<ir::ParamRef>(b)->param;
+      case ir::ExprKind::ConstRef:
+        return ir::as<ir::ConstRef>(a)->constant == ir::as<ir::ConstRef>(b)->constant;
+      case ir::ExprKind::VarRef: {
+        auto x = ir::as<ir::VarRef>(a), y = ir::as<ir::VarRef>(b);
+        return x->set == y->set && x->var == y->var && exchanged(x->label) == y->label;
+      }
+      case ir::ExprKind::Unary: {
+        auto x = ir::as<ir::Unary>(a), y = ir::as<ir::Unary>(b);
+        return x->op == y->op && twins(x->operand, y->operand);
+      }
+      case ir::ExprKind::Binary: {
+        auto x = ir::as<ir::Binary>(a), y = ir::as<ir::Binary>(b);
+        return x->op == y->op && twins(x->lhs, y->lhs) && twins(x->rhs, y->rhs);
+      }
+      case ir::ExprKind::Call: {
+        auto x = ir::as<ir::Call>(a), y = ir::as<ir::Call>(b);
+        return x->fn == y->fn && all_twins(x->args, y->args);
+      }
+      case ir::ExprKind::MakeVec:
+        return all_twins(ir::as<ir::MakeVec>(a)->components, ir::as<ir::MakeVec>(b)->components);
+      case ir::ExprKind::Component: {
+        auto x = ir::as<ir::Component>(a), y = ir::as<ir::Component>(b);
+        return x->index == y->index && twins(x->vec, y->vec);
+      }
+      case ir::ExprKind::FnCall: {
+        auto x = ir::as<ir::FnCall>(a), y = ir::as<ir::FnCall>(b);
+        return x->fn == y->fn && all_twins(x->args, y->args);
+      }
+      // T negates dx, so dx has no twin of the same form; the rest cannot
+      // occur in an accumulation.
+      case ir::ExprKind::Dx:
+      case ir::ExprKind::Random:
+      case ir::ExprKind::Accumulate:
+      case ir::ExprKind::FnArg: return false;
+    }
+    internal_error("PairExchange: unknown expression kind");
+  }
+
+  const int j_;
+};
+
+// Why `what` (the condition, the term) is not symmetric, naming the variable
+// read without its twin when that is where the asymmetry starts.
+std::string asymmetry(const std::string& what, const Expr& culprit, const std::string& exchange,
+                      const ir::Model& model, const ir::Statement& st, int j) {
+  auto v = ir::as<ir::VarRef>(culprit);
+  if (!v) return what + " is not symmetric under " + exchange;
+  const std::string& name = model.sets[v->set].vars[v->var].name;
+  const int twin = v->label == 0 ? j : 0;
+  return fmt::format("{} reads {}[{}] alone, not paired symmetrically with {}[{}]", what, name,
+                     st.labels[v->label].name, name, st.labels[twin].name);
+}
+
+PairSymmetryFact judge(const ir::Model& model, const ir::Statement& st, const ir::Accumulate& acc) {
+  const ir::Label& i = st.labels[0];
+  const ir::Label& j = st.labels[acc.label];
+  const std::string exchange = i.name + " <-> " + j.name + ", dx -> -dx";
+  PairSymmetryFact fact;
+  if (acc.reduction == ir::Reduction::Min || acc.reduction == ir::Reduction::Max) {
+    fact.reason = std::string(ir::reduction_name(acc.reduction)) +
+                  " is not a sum: only sums and counts add a pair's term to both particles";
+    return fact;
+  }
+  if (j.set != i.set) {
+    fact.reason = fmt::format("{} ranges over {}, not {}: only {} takes the term", j.name,
+                              model.sets[j.set].name, model.sets[i.set].name, i.name);
+    return fact;
+  }
+  // No condition: every pair, both ways.
+  PairExchange condition(acc.label);
+  if (acc.condition && condition.parity(acc.condition) != Parity::Even) {
+    fact.reason = asymmetry("the condition", condition.culprit, exchange, model, st, acc.label);
+    return fact;
+  }
+  if (acc.reduction == ir::Reduction::Count) {
+    fact.newton = true;
+    fact.reason = "the condition is symmetric under " + exchange;
+    return fact;
+  }
+  PairExchange term(acc.label);
+  switch (term.parity(acc.body)) {
+    case Parity::Even:
+      fact.newton = true;
+      fact.reason = "the term and the condition are symmetric under " + exchange + ": " + j.name +
+                    " takes +term";
+      break;
+    case Parity::Odd:
+      fact.newton = true;
+      fact.sign = -1;
+      fact.reason = "the term is antisymmetric and the condition symmetric under " + exchange +
+                    ": " + j.name + " takes -term";
+      break;
+    case Parity::Neither:
+      fact.reason = asymmetry("the term", term.culprit, exchange, model, st, acc.label);
+      break;
+  }
+  return fact;
+}
+
+class AccumulationFinder : public ir::Visitor {
+ public:
+  AccumulationFinder(const ir::Model& model, PairSymmetryReport& report)
+      : model_(model), report_(report) {}
+  using ir::Visitor::visit;
+
+  void find(const ir::Statement& st) {
+    st_ = &st;
+    visit(st.value);
+  }
+
+ protected:
+  void visit(const ir::Accumulate& acc) override { report_[acc.id] = judge(model_, *st_, acc); }
+
+ private:
+  const ir::Model& model_;
+  PairSymmetryReport& report_;
+  const ir::Statement* st_ = nullptr;
+};
+
+}  // namespace
+
+PairSymmetryReport find_pair_symmetry(const ir::Model& model) {
+  PairSymmetryReport report;
+  AccumulationFinder finder(model, report);
+  for (const ir::Stage& stage : model.stages)
+    for (const ir::Statement& st : stage.statements) finder.find(st);
+  return report;
+}
+
+}  // namespace partc
