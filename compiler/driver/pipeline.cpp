@@ -66,16 +66,20 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         if (st.schedule.skin)
           out += "    schedule: Verlet lists with skin " +
                  std::string(file.slice(st.schedule.skin->loc)) +
-                 ", rebuilt only when a particle has moved more than half the skin\n";
+                 ", rebuilt only when a particle has moved more than half the skin (a radius over half "
+                 "a periodic box length is refused at run time: lists keep one image)\n";
         else if (st.schedule.search != ir::SearchChoice::Auto)
-          out += std::string("    schedule: always ") + ir::search_choice_name(st.schedule.search) + "\n";
+          out += std::string("    schedule: always ") + ir::search_choice_name(st.schedule.search) +
+                 " (brute force for a radius over half a periodic box length)\n";
         else
           out += "    at run time, from the data: brute force when a cell list would save each query "
                  "fewer than partc::NeighbourSearch::default_margin pair tests (few particles, or "
                  "a radius near the box size); a k-d tree when the particles are so clustered that "
                  "a cell list's queries would examine more than "
                  "NeighbourSearch::kd_tree_above_examined points; else an ordered cell list. "
-                 "Rebuilt only after positions change. Override with a schedule.\n";
+                 "A radius over half a periodic box length always means brute force, which sums "
+                 "every periodic image within it. Rebuilt only after positions change. Override "
+                 "with a schedule.\n";
       }
     }
   }

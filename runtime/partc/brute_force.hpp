@@ -6,6 +6,14 @@
 // f(j, dx) exactly once for each point j with |dx|^2 <= radius^2 * (1 + 1e-12),
 // dx = domain.minimum_image(points[j] - q); j itself is included when q == points[j].
 //
+// Radius over half a periodic length: then a point can be within the radius
+// under several images, dx = minimum image + s * L (s integer, per periodic
+// dimension), and BruteForce reports every one of them: f(j, dx) once per
+// image within the radius (j's images in a fixed order), including the
+// query's own images when q == points[j] (dx = s * L, s != 0). Only BruteForce
+// does this (the others see the nearest image only), so NeighbourSearch uses
+// it for such radii; all_images() says whether this build is in that regime.
+//
 // Surprises: build copies the points, wrapped into the periodic box, so the
 // caller's vector may change afterwards. With points and query wrapped, every
 // periodic component of points[j] - q lies in (-L, L), so the pair loop does
@@ -13,8 +21,12 @@
 // (non-periodic: never shifted) and needs no remainder fallback.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "partc/domain.hpp"
@@ -25,6 +37,8 @@ namespace partc {
 template <int D>
 class BruteForce {
  public:
+  static constexpr double max_lengths_per_radius = 100.0;
+
   void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
     check_search_arguments(domain, radius);
     domain_ = domain;
@@ -33,6 +47,19 @@ class BruteForce {
       // Non-periodic: a shift of 0 * 0 when |d| > infinity, i.e. never (and no inf * 0).
       length_[k] = domain.periodic[k] ? domain.hi[k] - domain.lo[k] : 0.0;
       half_[k] = domain.periodic[k] ? 0.5 * length_[k] : std::numeric_limits<double>::infinity();
+    }
+    reach_ = radius * (1 + 1e-12);
+    all_images_ = needs_all_images(domain, radius);
+    for (int k = 0; k < D; ++k) {
+      if (!domain.periodic[k]) continue;
+      // Every pair would have (2 radius / L)^D images: such a radius is a mistake.
+      if (reach_ > max_lengths_per_radius * length_[k]) {
+        std::ostringstream message;
+        message << "partc: neighbour search: radius " << radius << " spans more than "
+                << max_lengths_per_radius << " periodic lengths (" << length_[k]
+                << ") in dimension " << k;
+        throw std::invalid_argument(message.str());
+      }
     }
     points_.resize(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) points_[j] = domain.wrap(points[j]);
@@ -47,17 +74,56 @@ class BruteForce {
         const int shift = static_cast<int>(dx[k] > half_[k]) - static_cast<int>(dx[k] < -half_[k]);
         dx[k] -= length_[k] * shift;
       }
-      if (squared_norm(dx) <= squared_reach_) f(j, dx);
+      if (all_images_)
+        for_each_image(j, dx, f);
+      else if (squared_norm(dx) <= squared_reach_)
+        f(j, dx);
     }
+  }
+
+  // True when the radius exceeds half a periodic length: points may be reported
+  // more than once, under several images (see the header).
+  bool all_images() const { return all_images_; }
+  static bool needs_all_images(const Domain<D>& domain, double radius) {
+    for (int k = 0; k < D; ++k)
+      if (domain.periodic[k] && 2 * radius * (1 + 1e-12) > domain.hi[k] - domain.lo[k]) return true;
+    return false;
   }
 
  // Point j of the last build, wrapped into the periodic box.
   const Vec<D>& point(std::size_t j) const { return points_[j]; }
 
  private:
+  // f(j, d + s * L) for every integer s (0 in non-periodic dimensions) within
+  // reach, given the nearest image d: per dimension the s with |d + s L| <=
+  // reach, then every combination of them (an odometer, s ascending).
+  template <class F>
+  void for_each_image(std::size_t j, const Vec<D>& d, F& f) const {
+    std::array<long, D> first{}, last{}, s{};
+    for (int k = 0; k < D; ++k) {
+      if (!domain_.periodic[k]) continue;
+      if (std::isnan(d[k])) return;
+      first[k] = static_cast<long>(std::ceil((-reach_ - d[k]) / length_[k]));
+      last[k] = static_cast<long>(std::floor((reach_ - d[k]) / length_[k]));
+      if (first[k] > last[k]) return;  // also for NaN: no image at all
+    }
+    s = first;
+    while (true) {
+      Vec<D> dx = d;
+      for (int k = 0; k < D; ++k) dx[k] += static_cast<double>(s[k]) * length_[k];
+      if (squared_norm(dx) <= squared_reach_) f(j, dx);
+      int k = 0;
+      while (k < D && s[k] == last[k]) s[k] = first[k], ++k;
+      if (k == D) return;
+      ++s[k];
+    }
+  }
+
   Domain<D> domain_{};
   Vec<D> length_{}, half_{};
+  double reach_ = 0.0;
   double squared_reach_ = 0.0;
+  bool all_images_ = false;
   std::vector<Vec<D>> points_;
 };
 

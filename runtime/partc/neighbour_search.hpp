@@ -6,7 +6,8 @@
 // the ordered cell list otherwise; a model's schedule can force one of them.
 // for_each_near dispatches with one branch per query.
 //
-// Query contract: as BruteForce (brute_force.hpp).
+// Query contract: as BruteForce (brute_force.hpp), including its images: a
+// radius over half a periodic length reports every image within the radius.
 //
 // Surprises: on the cell-list and tree paths build REORDERS the particle set
 // (set.permute(order)), so that j in f(j, dx) indexes the set's arrays; indices
@@ -65,8 +66,9 @@ class NeighbourSearch {
   static constexpr double kd_tree_clustering = 4.0;
 
   explicit NeighbourSearch(double margin = default_margin) : margin_(margin) {}
-  // Always this structure (a model's schedule said so). A forced cell list
-  // also serves periodic sides of fewer than 3 cells, in its exact mode.
+  // Always this structure (a model's schedule said so), except that a radius
+  // over half a periodic length takes brute force (see build). A forced cell
+  // list also serves periodic sides of fewer than 3 cells, in its exact mode.
   explicit NeighbourSearch(Kind forced) : forced_(forced) {}
 
   template <class Set>
@@ -76,8 +78,11 @@ class NeighbourSearch {
     const double saved = static_cast<double>(n) * (1.0 - grid.visited_fraction());
     // A periodic dimension with < 3 cells (radius > L/3) also means brute force:
     // the cell list would need a per-pair minimum_image there.
-    const bool brute = forced_ ? *forced_ == Kind::brute_force
-                               : saved < margin_ || !grid.shifts_suffice();
+    // Only brute force reports every periodic image of a point, which a radius
+    // over half a periodic length needs: there it is used whatever was forced.
+    const bool brute = BruteForce<D>::needs_all_images(domain, radius) ||
+                       (forced_ ? *forced_ == Kind::brute_force
+                                : saved < margin_ || !grid.shifts_suffice());
     if (brute) {
       kind_ = Kind::brute_force;
       brute_force_.build(domain, radius, set.positions());

@@ -50,9 +50,12 @@
 //   above holds slot by slot, so whatever reorders or replaces particles without
 //   changing their number is safe (a slot whose position jumped makes update
 //   rebuild). Crossing a periodic edge (and being wrapped) is no displacement.
-// - Any radius + skin works, also beyond half (or all) of a periodic box: each
-//   list holds j once (NeighbourSearch's contract, for any radius), dx is the
-//   shortest image at every query, and the triangle inequality needs no bound.
+// - The radius must be at most half of each periodic length (update throws
+//   std::invalid_argument otherwise): beyond that a particle meets several
+//   images of another (BruteForce reports them all), and a list keeps one j.
+//   radius + skin may exceed it: the build's search then reports images, each
+//   j is kept once, dx is the shortest image at every query, and the triangle
+//   inequality needs no bound.
 // - The build reaches a hair beyond radius + skin (round_off_guard): without
 //   that, a pair on the very boundary of the radius could be lost to rounding.
 // - A NaN position counts as moved (every update rebuilds) and is never reported.
@@ -94,6 +97,14 @@ class VerletList {
   // std::invalid_argument for a bad radius or periodic length (check_search_arguments).
   template <class Set>
   bool update(const Domain<D>& domain, double radius, Set& set) {
+    if (BruteForce<D>::needs_all_images(domain, radius)) {
+      std::ostringstream message;
+      message << "partc: Verlet lists: radius " << radius
+              << " exceeds half a periodic box length, so a particle would meet several images "
+                 "of another and a list keeps one; enlarge the box, or search without a skin "
+                 "(a search sums every image)";
+      throw std::invalid_argument(message.str());
+    }
     const bool rebuild = rebuild_count_ == 0 || radius != radius_ || domain.lo != domain_.lo ||
                          domain.hi != domain_.hi || domain.periodic != domain_.periodic ||
                          set.positions().size() != at_build_.size() ||
@@ -186,7 +197,8 @@ class VerletList {
   void build(const Domain<D>& domain, double radius, Set& set) {
     check_search_arguments(domain, radius);  // radius + skin > 0 would pass a negative radius
     NeighbourSearch<D> search;
-    search.build(domain, radius + skin_ + round_off_guard(domain, radius), set);
+    const double build_radius = radius + skin_ + round_off_guard(domain, radius);
+    search.build(domain, build_radius, set);
     at_build_ = set.positions();  // after the reorder: by the indices the lists use
     const std::size_t n = at_build_.size();
     if (n > std::numeric_limits<std::uint32_t>::max())
@@ -195,10 +207,16 @@ class VerletList {
     start_.resize(n + 1);
     start_[0] = 0;
     neighbours_.clear();
+    const bool images = BruteForce<D>::needs_all_images(domain, build_radius);
     for (std::size_t i = 0; i < n; ++i) {
       search.for_each_near_after(i, [this](std::size_t j, const Vec<D>&) {
         neighbours_.push_back(static_cast<std::uint32_t>(j));
       });
+      if (images) {  // j once, whatever its images: queries take the nearest
+        const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
+        std::sort(first, neighbours_.end());
+        neighbours_.erase(std::unique(first, neighbours_.end()), neighbours_.end());
+      }
       start_[i + 1] = neighbours_.size();
     }
     if (pairs_ == VerletPairs::full)

@@ -210,9 +210,10 @@ class HandBruteForce {
  public:
   HandBruteForce(const Positions& input, double rc, double c)
       : x_(input.x), y_(input.y), vx_(input.size(), 0.0), vy_(input.size(), 0.0),
-        rc2_(rc * rc), c_(c) {}
+        rc2_(rc * rc), c_(c), images_(rc >= 0.5 * box) {}
 
   void update_velocities() {
+    if (images_) return update_velocities_with_images();
     const double rc2 = rc2_, c = c_;
     const std::size_t n = x_.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -232,16 +233,37 @@ class HandBruteForce {
     }
   }
 
+  // rc >= box/2 (N <= 12 with rc = sqrt(3/N)): a particle can feel two images of
+  // another along an axis, and itself across the box; the differences of
+  // coordinates in [0, box) lie in (-box, box), so the shifts -box, 0, box
+  // give every image within rc < box.
+  void update_velocities_with_images() {
+    const double rc2 = rc2_, c = c_;
+    const std::size_t n = x_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      double fx = 0.0, fy = 0.0;
+      for (std::size_t j = 0; j < n; ++j)
+        for (int sx = -1; sx <= 1; ++sx)
+          for (int sy = -1; sy <= 1; ++sy) {
+            const double dx = x_[j] - x_[i] + sx * box, dy = y_[j] - y_[i] + sy * box;
+            add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy);
+          }
+      vx_[i] += c * fx;
+      vy_[i] += c * fy;
+    }
+  }
+
+  // Pairs (i, j) with 0 < |dx| < rc, every image counted, divided by N.
   double mean_neighbours() const {
     std::size_t pairs = 0;
     for (std::size_t i = 0; i < x_.size(); ++i)
-      for (std::size_t j = 0; j < x_.size(); ++j) {
-        double dx = x_[j] - x_[i], dy = y_[j] - y_[i];
-        dx -= box * ((dx > 0.5 * box) - (dx < -0.5 * box));
-        dy -= box * ((dy > 0.5 * box) - (dy < -0.5 * box));
-        const double r2 = dx * dx + dy * dy;
-        pairs += r2 < rc2_ && r2 > 0.0;
-      }
+      for (std::size_t j = 0; j < x_.size(); ++j)
+        for (int sx = -1; sx <= 1; ++sx)
+          for (int sy = -1; sy <= 1; ++sy) {
+            const double dx = x_[j] - x_[i] + sx * box, dy = y_[j] - y_[i] + sy * box;
+            const double r2 = dx * dx + dy * dy;
+            pairs += r2 < rc2_ && r2 > 0.0;
+          }
     return static_cast<double>(pairs) / static_cast<double>(x_.size());
   }
 
@@ -254,6 +276,7 @@ class HandBruteForce {
  private:
   std::vector<double> x_, y_, vx_, vy_;
   double rc2_, c_;
+  bool images_;
 };
 
 // The partc model, its particles loaded from a table built in memory: ids

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -158,15 +159,88 @@ std::vector<std::string> disagreements(const Domain<D>& domain, double radius,
   return errors;
 }
 
+// As disagreements, for a radius over half a periodic length, where every image
+// of a point within the radius must be reported once (brute_force.hpp): the
+// images are the nearest one plus s whole boxes, s = -m..m per periodic
+// dimension with m enough to pass the radius, all checked; each reported
+// (j, dx) must match an image of j not yet matched.
+template <int D, class ForEachNear>
+std::vector<std::string> image_disagreements(const Domain<D>& domain, double radius,
+                                             const std::vector<Vec<D>>& points,
+                                             const std::vector<Vec<D>>& queries,
+                                             const ForEachNear& for_each_near) {
+  const double r = radius;
+  const double points_magnitude = magnitude(domain, points);
+  std::vector<std::string> errors;
+  struct Image {
+    Vec<D> dx;
+    bool required, matched;
+  };
+  for (std::size_t iq = 0; iq < queries.size(); ++iq) {
+    const Vec<D>& q = queries[iq];
+    const double tol = tolerance(points_magnitude, q);
+    const double too_far = r * (1 + 1e-12) + D * tol;
+    const double must_find_squared = std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol);
+    const auto where = [&](std::size_t j) {
+      return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + ": ";
+    };
+    std::vector<std::vector<Image>> images(points.size());
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const Vec<D> nearest = reference_image(domain, points[j] - q);
+      if (!is_finite(nearest)) continue;
+      std::array<std::vector<double>, D> offsets;  // per dimension: the shifts worth trying
+      for (int k = 0; k < D; ++k) {
+        const double L = domain.hi[k] - domain.lo[k];
+        const int m = domain.periodic[k] ? static_cast<int>(std::ceil(r / L)) + 1 : 0;
+        for (int s = -m; s <= m; ++s)
+          if (std::abs(nearest[k] + s * L) <= too_far) offsets[k].push_back(s * L);
+      }
+      std::array<std::size_t, D> at{};
+      bool done = false;
+      for (int k = 0; k < D; ++k) done = done || offsets[k].empty();
+      while (!done) {
+        Vec<D> dx = nearest;
+        for (int k = 0; k < D; ++k) dx[k] += offsets[k][at[k]];
+        if (norm(dx) <= too_far) images[j].push_back({dx, squared_norm(dx) <= must_find_squared, false});
+        int k = 0;
+        while (k < D && ++at[k] == offsets[k].size()) at[k++] = 0;
+        done = k == D;
+      }
+    }
+    for_each_near(iq, [&](std::size_t j, const Vec<D>& dx) {
+      if (j >= points.size()) {
+        errors.push_back(where(j) + "index out of range");
+        return;
+      }
+      for (Image& image : images[j]) {
+        bool close = !image.matched;
+        for (int k = 0; k < D && close; ++k) close = std::abs(dx[k] - image.dx[k]) <= tol;
+        if (!close) continue;
+        image.matched = true;
+        return;
+      }
+      errors.push_back(where(j) + "dx " + show(dx) + " is no image within the radius, or twice");
+    });
+    for (std::size_t j = 0; j < points.size(); ++j)
+      for (const Image& image : images[j])
+        if (image.required && !image.matched)
+          errors.push_back(where(j) + "missed the image dx " + show(image.dx));
+  }
+  return errors;
+}
+
 // The queries of c against a structure queried by position, for_each_near(q, report),
 // whose indices refer to `points` (c.points in the structure's order).
+// With all_images, against image_disagreements (BruteForce and NeighbourSearch
+// for a radius over half a periodic length).
 template <int D, class Search>
 std::vector<std::string> disagreements(const Case<D>& c, const std::vector<Vec<D>>& points,
-                                       const Search& search) {
-  return disagreements(c.domain, c.radius, points, c.queries,
-                       [&](std::size_t iq, const auto& report) {
-                         search.for_each_near(c.queries[iq], report);
-                       });
+                                       const Search& search, bool all_images = false) {
+  const auto query = [&](std::size_t iq, const auto& report) {
+    search.for_each_near(c.queries[iq], report);
+  };
+  return all_images ? image_disagreements(c.domain, c.radius, points, c.queries, query)
+                    : disagreements(c.domain, c.radius, points, c.queries, query);
 }
 
 // One assertion per call, showing the first few disagreements when it fails.

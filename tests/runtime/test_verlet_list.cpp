@@ -118,10 +118,11 @@ TEMPLATE_TEST_CASE("half lists give every pair once, over many steps of random m
                    PARTC_VERLET_DIMS) {
   constexpr int D = TestType::value;
   // As the full-list test below, plus a set large enough for several slabs.
-  const std::pair<std::size_t, double> cases[] = {{400, 0.15}, {60, 0.7}, {30, 3.0}};
+  const std::pair<std::size_t, double> cases[] = {{400, 0.15}, {60, 0.7}, {60, 0.95}, {30, 3.0}};
   std::uint64_t seed = 300 * D;
   for (Periodicity periodicity : all_periodicities) {
     for (const auto& [n, radius] : cases) {
+      if (periodicity != Periodicity::none && radius > 1.0) continue;  // refused: see below
       const double skin = 0.1;
       INFO(periodicity_name(periodicity) << ", D = " << D << ", N = " << n << ", radius "
                                          << radius);
@@ -197,12 +198,14 @@ TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion
     double radius, skin;
   };
   // Box lengths 2 to 3.5. Small reach: NeighbourSearch takes its cell list; reach
-  // beyond half the shortest box (1.1, 1.7), then beyond a whole box (3.5, with
-  // radius 3 > L/2 itself): brute force, and minimum images matter.
-  const Params cases[] = {{150, 0.2, 0.1}, {60, 0.7, 0.4}, {60, 1.2, 0.5}, {30, 3.0, 0.5}};
+  // beyond half the shortest box (1.1, 1.45): brute force, which reports several
+  // images of a point, each kept once; and without periodicity a radius beyond a
+  // whole box (3). (A radius over half a periodic box is refused: see below.)
+  const Params cases[] = {{150, 0.2, 0.1}, {60, 0.7, 0.4}, {60, 0.95, 0.5}, {30, 3.0, 0.5}};
   std::uint64_t seed = 100 * D;
   for (Periodicity periodicity : all_periodicities) {
     for (const Params& c : cases) {
+      if (periodicity != Periodicity::none && c.radius > 1.0) continue;
       INFO(periodicity_name(periodicity) << ", D = " << D << ", N = " << c.n << ", radius "
                                          << c.radius << ", skin " << c.skin);
       const Domain<D> domain = make_domain<D>(periodicity, false);
@@ -471,4 +474,28 @@ TEST_CASE("a bad skin or radius is rejected", "[verlet]") {
     CHECK_THROWS_WITH(list.update(domain, radius, set), Catch::Contains("radius must be positive"));
   }
   CHECK(list.rebuild_count() == 0);
+}
+
+TEST_CASE("a radius over half a periodic box length is refused, not cut to one image",
+          "[verlet]") {
+  Domain<2> domain = unit_box<2>(false);
+  domain.periodic[0] = true;  // length 1 in x; y is not periodic
+  Set<2> set;
+  set.push_back(Vec<2>{{0.1, 0.5}});
+  set.push_back(Vec<2>{{0.9, 0.5}});
+  VerletList<2> list(0.1);
+  CHECK_THROWS_WITH(list.update(domain, 0.55, set), Catch::Contains("exceeds half a periodic box"));
+  CHECK(list.rebuild_count() == 0);
+  // Just under half the box: one image, found across the edge; radius + skin
+  // beyond half the box is fine (the build sees both images of j and keeps it once).
+  REQUIRE(list.update(domain, 0.49, set));
+  std::vector<std::size_t> found;
+  list.for_each_near(0, [&](std::size_t j, const Vec<2>& dx) {
+    found.push_back(j);
+    if (j != 0) CHECK(std::abs(std::abs(dx[0]) - 0.2) < 1e-15);
+  });
+  CHECK(found.size() == 2);
+  // Not periodic in y: a radius of 10 box lengths there is fine.
+  domain.periodic[0] = false;
+  CHECK_NOTHROW(list.update(domain, 10.0, set));
 }
