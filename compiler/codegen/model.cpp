@@ -114,7 +114,8 @@ class ModelEmitter {
     }
     for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
     for (const char* api : {"params", "set_seed", "step_count", "param_info", "set_param", "init",
-                            "load", "step", "for_each_set", "check_finite", "compute_constants"})
+                            "load", "step", "for_each_set", "search_report", "check_finite",
+                            "compute_constants"})
       members_.reserve(api);
     for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
     for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
@@ -299,6 +300,7 @@ class ModelEmitter {
     load();
     step();
     for_each_set();
+    search_report();
     line("");
     line("// Throws partc::NumericalError naming the first NaN or Inf found.");
     line("void check_finite() const {");
@@ -391,6 +393,24 @@ class ModelEmitter {
     line("template <class F> void for_each_set(F&& f) const {");
     for (std::size_t s = 0; s < m_.sets.size(); ++s)
       linef("f(\"{}\", {});", m_.sets[s].name, set_member_[s]);
+    line("}");
+  }
+
+  void search_report() {
+    line("// Each neighbour search: what it serves, its structure, its builds so far.");
+    line("std::vector<partc::SearchReport> search_report() const {");
+    line("std::vector<partc::SearchReport> report;");
+    for (const auto& [key, search] : searches_)
+      linef("report.push_back({{\"sums over {0}{1}\", {2}.describe(), {2}.build_count()}});",
+            m_.sets[key.first].name,
+            key.second == SearchChoice::Auto ? ""
+                                             : std::string(" (schedule: ") +
+                                                   search_choice_name(key.second) + ")",
+            search);
+    for (const auto& [st, lists] : lists_)
+      linef("if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count()}});", lists,
+            (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
+    line("return report;");
     line("}");
   }
 

@@ -18,6 +18,8 @@
 //   constructed model, before init or load: generated models hold their sets
 //   as members, so this needs no extra API.
 // - VTK "time" is the step number: the driver does not know the model's dt.
+// - The summary ends with the model's search_report(): each neighbour search
+//   or set of Verlet lists, its structure and how often it was built.
 #pragma once
 
 #include <algorithm>
@@ -233,6 +235,11 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
            << "\n";
     });
   });
+  const std::vector<SearchReport> searches = model.search_report();
+  if (!searches.empty()) text << "neighbour searches:\n";
+  for (const SearchReport& s : searches)
+    text << "  " << s.serves << ": " << s.structure << "; built " << s.builds
+         << (s.builds == 1 ? " time\n" : " times\n");
   out << text.str();
 }
 

@@ -1,6 +1,7 @@
 // partc/model_support.hpp: small pieces every generated model uses.
 //
 // - ParamInfo / parse_param: parameters as text, for --set and --help.
+// - SearchReport: what a neighbour search is and how often it was built.
 // - max_over: the largest value over a set's particles.
 // - load_set: a particle set from a CSV table, with the model's declared
 //   initial values for the variables the table lacks, and positions wrapped
@@ -27,6 +28,14 @@ struct ParamInfo {
   const char* name;
   const char* type;
   std::string default_value;
+};
+
+// One neighbour search or set of Verlet lists of a model, for the driver's summary:
+// what it serves, its structure (describe()), and its builds so far.
+struct SearchReport {
+  std::string serves;
+  std::string structure;
+  std::size_t builds;
 };
 
 template <class T>

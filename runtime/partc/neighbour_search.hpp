@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "partc/brute_force.hpp"
@@ -83,6 +84,7 @@ class NeighbourSearch {
     const bool brute = BruteForce<D>::needs_all_images(domain, radius) ||
                        (forced_ ? *forced_ == Kind::brute_force
                                 : saved < margin_ || !grid.shifts_suffice());
+    ++build_count_;
     if (brute) {
       kind_ = Kind::brute_force;
       brute_force_.build(domain, radius, set.positions());
@@ -146,12 +148,24 @@ class NeighbourSearch {
   }
 
   Kind kind() const { return kind_; }
+  std::size_t build_count() const { return build_count_; }
+  // The structure of the last build, for people: "cell list", ...
+  std::string describe() const {
+    if (build_count_ == 0) return "not built yet";
+    switch (kind_) {
+      case Kind::cell_list: return "cell list, " + std::to_string(cell_count()) + " cells";
+      case Kind::kd_tree: return "k-d tree";
+      case Kind::brute_force: break;
+    }
+    return brute_force_.all_images() ? "brute force, every periodic image" : "brute force";
+  }
   std::size_t cell_count() const { return kind_ == Kind::cell_list ? cell_list_.cell_count() : 0; }
 
  private:
   double margin_ = default_margin;
   std::optional<Kind> forced_;
   Kind kind_ = Kind::brute_force;
+  std::size_t build_count_ = 0;
   BruteForce<D> brute_force_;
   OrderedCellList<D> cell_list_;
   KdTree<D> kd_tree_;

@@ -69,6 +69,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "partc/domain.hpp"
@@ -151,6 +152,17 @@ class VerletList {
   // List entries at the last build (within the build reach): full lists, ordered
   // pairs (i, j) with i == j included; half lists, pairs i < j.
   std::size_t pair_count() const { return neighbours_.size(); }
+  // For people: "Verlet lists, skin 0.3, each pair once, 1240000 pairs, 4 slabs".
+  std::string describe() const {
+    std::ostringstream text;
+    text << "Verlet lists, skin " << skin_;
+    if (pairs_ == VerletPairs::half)
+      text << ", each pair once, " << pair_count() << " pairs, " << slab_count()
+           << (slab_count() == 1 ? " slab (serial)" : " slabs");
+    else
+      text << ", " << pair_count() << " entries";
+    return text.str();
+  }
   // Half lists: the slabs of the parallel schedule (1: serial).
   std::size_t slab_count() const { return slab_start_.size() - 1; }
 

@@ -116,12 +116,12 @@ MeltRun melt_run(const lj_melt_bench::MeltState& start) {
   LjMelt model;
   lj_melt_bench::load_melt(model, start);
   MeltRun run;
-  std::vector<std::int64_t> order = model.A().ids();
+  std::size_t builds = lj_melt_bench::list_builds(model);
   for (int step = 1; step <= lj_melt_bench::steps; ++step) {
     const double t = bench::seconds([&] { model.step(); });
     run.loop += t;
-    if (model.A().ids() != order) {
-      order = model.A().ids();
+    if (lj_melt_bench::list_builds(model) != builds) {
+      builds = lj_melt_bench::list_builds(model);
       run.rebuild_steps += t;
       ++run.rebuilds;
     } else {

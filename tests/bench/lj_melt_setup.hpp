@@ -141,6 +141,14 @@ inline MeltState melt_start(std::uint64_t seed = 87287) {
 // Replaces the model's particles by the state, ids 0..N-1 in state order. The
 // forces go in too: step() starts with a half kick by the f of the previous
 // step, which the model's init computes and a load must bring.
+// Builds so far of the Verlet lists of the model's force statement ("force:"),
+// as the model reports them.
+inline std::size_t list_builds(const LjMelt& model) {
+  for (const partc::SearchReport& search : model.search_report())
+    if (search.serves.rfind("force at ", 0) == 0) return search.builds;
+  return 0;
+}
+
 inline void load_melt(LjMelt& model, const MeltState& s) {
   partc::CsvTable table;
   table.header = {"id", "p_0", "p_1", "p_2", "v_0", "v_1", "v_2", "f_0", "f_1", "f_2"};
