@@ -113,7 +113,8 @@ class VerletList {
     if (rebuild) build(domain, radius, set);
     const std::vector<Vec<D>>& positions = set.positions();
     current_.resize(positions.size());
-    for (std::size_t i = 0; i < positions.size(); ++i) current_[i] = domain.wrap(positions[i]);
+    parallel_for(positions.size(), LoopWork::light,
+                 [&](std::size_t i) { current_[i] = domain.wrap(positions[i]); });
     return rebuild;
   }
 
@@ -197,12 +198,23 @@ class VerletList {
     }
   }
 
-  bool moved_more_than_half_skin(const std::vector<Vec<D>>& positions) const {
+  // Blocks of particles for the parallel passes: each block's result depends on
+  // the block alone, so nothing depends on the thread count.
+  static constexpr std::size_t block_size = 2048;
+  static std::size_t blocks_of(std::size_t n) { return (n + block_size - 1) / block_size; }
+
+  bool moved_more_than_half_skin(const std::vector<Vec<D>>& positions) {
     const double limit = 0.25 * skin_ * skin_;
-    for (std::size_t i = 0; i < positions.size(); ++i)
-      if (!(squared_norm(domain_.minimum_image(positions[i] - at_build_[i])) <= limit))
-        return true;  // also for NaN
-    return false;
+    const std::size_t n = positions.size();
+    moved_.assign(blocks_of(n), 0);
+    parallel_for(moved_.size(), LoopWork::blocks, [&](std::size_t b) {
+      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i)
+        if (!(squared_norm(domain_.minimum_image(positions[i] - at_build_[i])) <= limit)) {
+          moved_[b] = 1;  // also for NaN
+          return;
+        }
+    });
+    return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
   }
 
   template <class Set>
@@ -215,22 +227,33 @@ class VerletList {
     const std::size_t n = at_build_.size();
     if (n > std::numeric_limits<std::uint32_t>::max())
       throw std::length_error("partc: VerletList: more than 2^32 - 1 particles");
-    // Each pair once, from its lower index (the full lists are made from these).
+    // Each pair once, from its lower index (the full lists are made from these),
+    // block by block in parallel, then joined in block order.
     start_.resize(n + 1);
     start_[0] = 0;
-    neighbours_.clear();
     const bool images = BruteForce<D>::needs_all_images(domain, build_radius);
-    for (std::size_t i = 0; i < n; ++i) {
-      search.for_each_near_after(i, [this](std::size_t j, const Vec<D>&) {
-        neighbours_.push_back(static_cast<std::uint32_t>(j));
-      });
-      if (images) {  // j once, whatever its images: queries take the nearest
-        const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
-        std::sort(first, neighbours_.end());
-        neighbours_.erase(std::unique(first, neighbours_.end()), neighbours_.end());
+    block_lists_.resize(blocks_of(n));
+    parallel_for(block_lists_.size(), LoopWork::blocks, [&](std::size_t b) {
+      std::vector<std::uint32_t>& list = block_lists_[b];
+      list.clear();
+      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i) {
+        const std::size_t first = list.size();
+        search.for_each_near_after(
+            i, [&](std::size_t j, const Vec<D>&) { list.push_back(static_cast<std::uint32_t>(j)); });
+        if (images) {  // j once, whatever its images: queries take the nearest
+          std::sort(list.begin() + static_cast<std::ptrdiff_t>(first), list.end());
+          list.erase(std::unique(list.begin() + static_cast<std::ptrdiff_t>(first), list.end()),
+                     list.end());
+        }
+        start_[i + 1] = list.size() - first;  // a count until the prefix sum below
       }
-      start_[i + 1] = neighbours_.size();
-    }
+    });
+    for (std::size_t i = 0; i < n; ++i) start_[i + 1] += start_[i];
+    neighbours_.resize(start_[n]);
+    parallel_for(block_lists_.size(), LoopWork::blocks, [&](std::size_t b) {
+      std::copy(block_lists_[b].begin(), block_lists_[b].end(),
+                neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[b * block_size]));
+    });
     if (pairs_ == VerletPairs::full)
       make_full_lists();
     else
@@ -329,6 +352,8 @@ class VerletList {
   std::vector<Vec<D>> current_;     // wrapped positions at the last update: what queries measure
   std::vector<std::size_t> start_;  // the list of i: neighbours_[start_[i] .. start_[i+1]-1]
   std::vector<std::uint32_t> neighbours_;
+  std::vector<std::vector<std::uint32_t>> block_lists_;  // build scratch, kept for its memory
+  std::vector<char> moved_;                              // update scratch: per block
   std::vector<std::size_t> slab_start_{0, 0};  // half: slab a holds particles slab_start_[a] ..
   std::vector<std::size_t> across_;  // half: i's pairs across the periodic edge: across_[i] ..
 };
