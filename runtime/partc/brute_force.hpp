@@ -37,7 +37,7 @@ namespace partc {
 template <int D>
 class BruteForce {
  public:
-  static constexpr double max_lengths_per_radius = 100.0;
+  static constexpr double max_lengths_per_radius = 10.0;
 
   void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
     check_search_arguments(domain, radius);
@@ -61,6 +61,7 @@ class BruteForce {
         throw std::invalid_argument(message.str());
       }
     }
+    if (all_images_) make_image_shifts();
     points_.resize(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) points_[j] = domain.wrap(points[j]);
   }
@@ -81,6 +82,14 @@ class BruteForce {
     }
   }
 
+  // f(j, point) for every point with lo <= point <= hi componentwise (point as
+  // stored: wrapped into the periodic box; the box itself does not wrap).
+  template <class F>
+  void for_each_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
+    for (std::size_t j = 0; j < points_.size(); ++j)
+      if (inside(points_[j], lo, hi)) f(j, points_[j]);
+  }
+
   // True when the radius exceeds half a periodic length: points may be reported
   // more than once, under several images (see the header).
   bool all_images() const { return all_images_; }
@@ -95,25 +104,30 @@ class BruteForce {
 
  private:
   // f(j, d + s * L) for every integer s (0 in non-periodic dimensions) within
-  // reach, given the nearest image d: per dimension the s with |d + s L| <=
-  // reach, then every combination of them (an odometer, s ascending).
+  // reach, given the nearest image d: every shift of image_shifts_ tried in turn.
   template <class F>
   void for_each_image(std::size_t j, const Vec<D>& d, F& f) const {
-    std::array<long, D> first{}, last{}, s{};
-    for (int k = 0; k < D; ++k) {
-      if (!domain_.periodic[k]) continue;
-      if (std::isnan(d[k])) return;
-      first[k] = static_cast<long>(std::ceil((-reach_ - d[k]) / length_[k]));
-      last[k] = static_cast<long>(std::floor((reach_ - d[k]) / length_[k]));
-      if (first[k] > last[k]) return;  // also for NaN: no image at all
-    }
-    s = first;
-    while (true) {
-      Vec<D> dx = d;
-      for (int k = 0; k < D; ++k) dx[k] += static_cast<double>(s[k]) * length_[k];
+    for (const Vec<D>& shift : image_shifts_) {
+      const Vec<D> dx = d + shift;
       if (squared_norm(dx) <= squared_reach_) f(j, dx);
+    }
+  }
+
+  // The shifts s * L with |s_k| <= ceil(reach / L_k) in each periodic dimension
+  // (0 in the others), s_0 changing fastest: since |d_k| <= L_k / 2 every image
+  // within reach is among them, and a pair's images come in that fixed order.
+  void make_image_shifts() {
+    std::array<long, D> m{}, s{};
+    for (int k = 0; k < D; ++k)
+      m[k] = domain_.periodic[k] ? static_cast<long>(std::ceil(reach_ / length_[k])) : 0;
+    for (int k = 0; k < D; ++k) s[k] = -m[k];
+    image_shifts_.clear();
+    while (true) {
+      Vec<D> shift;
+      for (int k = 0; k < D; ++k) shift[k] = static_cast<double>(s[k]) * length_[k];
+      image_shifts_.push_back(shift);
       int k = 0;
-      while (k < D && s[k] == last[k]) s[k] = first[k], ++k;
+      while (k < D && s[k] == m[k]) s[k] = -m[k], ++k;
       if (k == D) return;
       ++s[k];
     }
@@ -124,6 +138,7 @@ class BruteForce {
   double reach_ = 0.0;
   double squared_reach_ = 0.0;
   bool all_images_ = false;
+  std::vector<Vec<D>> image_shifts_;  // all_images_ only
   std::vector<Vec<D>> points_;
 };
 

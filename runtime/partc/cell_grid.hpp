@@ -135,6 +135,22 @@ class CellGrid {
       visit<0, std::false_type>(spans, 0, shift, run);
   }
 
+  // Calls run(first_cell, last_cell) for every run of cells that may hold a
+  // stored (wrapped) point p with lo <= p <= hi componentwise; none if some
+  // lo[k] > hi[k] or is NaN. No images: the box is not periodic.
+  template <class Run>
+  void for_each_run_in_box(const Vec<D>& lo, const Vec<D>& hi, Run&& run) const {
+    Spans spans;
+    for (int k = 0; k < D; ++k) {
+      if (!(lo[k] <= hi[k])) return;
+      spans.span[k][0] = {0.0, coord(k, lo[k]), coord(k, hi[k])};
+      spans.count[k] = 1;
+    }
+    Vec<D> shift{};
+    auto cells = [&](std::size_t first, std::size_t last, const Vec<D>&, auto) { run(first, last); };
+    visit<0, std::false_type>(spans, 0, shift, cells);
+  }
+
   // The hot loop of every query: calls f(j, dx) for each candidate j, advance(j),
   // ... (until stop) with |dx|^2 <= radius^2 (1 + 1e-12), in that order. Many
   // candidates are hits (about 1/3 in 2D, 1/6 in 3D), unpredictably, so a chunk

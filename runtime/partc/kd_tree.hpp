@@ -149,7 +149,7 @@ class KdTree {
     walk([&](const Node& node) { return meets(node.lo, node.hi); },
          [&](const Node& node) {
            for (std::size_t j = node.begin; j < node.end; ++j)
-             if (meets(points_[j], points_[j])) f(j, points_[j]);
+             if (inside(points_[j], lo, hi)) f(j, points_[j]);
          },
          [](const Node&) { return false; });
   }

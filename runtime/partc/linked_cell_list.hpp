@@ -48,6 +48,17 @@ class LinkedCellList {
     });
   }
 
+  // f(j, point) for every point with lo <= point <= hi componentwise (point as
+  // stored: wrapped into the periodic box; the box itself does not wrap).
+  template <class F>
+  void for_each_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
+    grid_.for_each_run_in_box(lo, hi, [&](std::size_t first, std::size_t last) {
+      for (std::size_t cell = first; cell <= last; ++cell)
+        for (std::size_t j = head_[cell]; j != none; j = next_[j])
+          if (inside(points_[j], lo, hi)) f(j, points_[j]);
+    });
+  }
+
   std::size_t cell_count() const { return grid_.cell_count(); }
 
  private:

@@ -116,6 +116,18 @@ class NeighbourSearch {
       brute_force_.for_each_near(q, f);
   }
 
+  // f(j, point) for every particle whose position (wrapped into the periodic
+  // box) lies in [lo, hi] componentwise; the box itself does not wrap.
+  template <class F>
+  void for_each_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
+    if (kind_ == Kind::cell_list)
+      cell_list_.for_each_in_box(lo, hi, f);
+    else if (kind_ == Kind::kd_tree)
+      kd_tree_.for_each_in_box(lo, hi, f);
+    else
+      brute_force_.for_each_in_box(lo, hi, f);
+  }
+
   // As for_each_near(p[i], f) for particle i of the set as of the last build
   // (after its reorder): the same neighbours, order and dx, found faster on the
   // cell-list path (OrderedCellList::for_each_near(k, f)).

@@ -70,6 +70,16 @@ class OrderedCellList {
     for_each_near_from(k, 0, f);
   }
 
+  // f(j, point) for every point with lo <= point <= hi componentwise (point as
+  // stored: wrapped into the periodic box; the box itself does not wrap).
+  template <class F>
+  void for_each_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
+    grid_.for_each_run_in_box(lo, hi, [&](std::size_t first, std::size_t last) {
+      for (std::size_t j = start_[first]; j < start_[last + 1]; ++j)
+        if (inside(points_[j], lo, hi)) f(j, points_[j]);
+    });
+  }
+
   // The same, for the points j > k only: each pair of points once, from its
   // first point. About half the work: runs of points before k are skipped.
   template <class F>

@@ -77,6 +77,14 @@ double squared_norm(const Vec<D>& a) { return dot(a, a); }
 template <int D>
 double norm(const Vec<D>& a) { return std::sqrt(squared_norm(a)); }
 
+// lo <= a <= hi componentwise (false if any of them is NaN).
+template <int D>
+bool inside(const Vec<D>& a, const Vec<D>& lo, const Vec<D>& hi) {
+  for (int k = 0; k < D; ++k)
+    if (!(a[k] >= lo[k] && a[k] <= hi[k])) return false;
+  return true;
+}
+
 template <int D>
 bool is_finite(const Vec<D>& a) {
   for (int k = 0; k < D; ++k)

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -241,6 +242,54 @@ std::vector<std::string> disagreements(const Case<D>& c, const std::vector<Vec<D
   };
   return all_images ? image_disagreements(c.domain, c.radius, points, c.queries, query)
                     : disagreements(c.domain, c.radius, points, c.queries, query);
+}
+
+// for_each_in_box against every stored (wrapped, finite) point, for boxes around
+// the queries, the whole domain, an infinite box, a point and an empty box; pts
+// are the case's points in the structure's order.
+template <int D, class Search>
+std::vector<std::string> box_disagreements(const Case<D>& c, const std::vector<Vec<D>>& pts,
+                                           const Search& search) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<Vec<D>, Vec<D>>> boxes = {
+      {c.domain.lo, c.domain.hi},
+      {Vec<D>::filled(-inf), Vec<D>::filled(inf)},
+      {c.domain.hi, c.domain.lo}};
+  for (std::size_t i = 0; i < c.queries.size(); i += 3) {
+    Vec<D> half_width;
+    for (int k = 0; k < D; ++k) half_width[k] = c.radius * (0.5 + 0.3 * k);
+    boxes.emplace_back(c.queries[i] - half_width, c.queries[i] + half_width);
+    if (i < pts.size()) {
+      const Vec<D> p = c.domain.wrap(pts[i]);
+      boxes.emplace_back(p, p);
+    }
+  }
+  std::vector<std::string> errors;
+  std::vector<int> hits(pts.size());
+  for (const auto& [lo, hi] : boxes) {
+    const std::string where = "box " + show(lo) + " - " + show(hi) + ", j ";
+    std::fill(hits.begin(), hits.end(), 0);
+    search.for_each_in_box(lo, hi, [&](std::size_t j, const Vec<D>& p) {
+      if (j >= pts.size()) {
+        errors.push_back(where + std::to_string(j) + ": index out of range");
+        return;
+      }
+      ++hits[j];
+      const Vec<D> stored = c.domain.wrap(pts[j]);
+      if (std::memcmp(&p, &stored, sizeof p) != 0)
+        errors.push_back(where + std::to_string(j) + ": point " + show(p) + ", stored " +
+                         show(stored));
+    });
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      const Vec<D> p = c.domain.wrap(pts[j]);
+      bool inside = is_finite(p);
+      for (int k = 0; k < D; ++k) inside = inside && lo[k] <= p[k] && p[k] <= hi[k];
+      if (hits[j] != (inside ? 1 : 0))
+        errors.push_back(where + std::to_string(j) + " " + show(p) + ": reported " +
+                         std::to_string(hits[j]) + " times");
+    }
+  }
+  return errors;
 }
 
 // One assertion per call, showing the first few disagreements when it fails.

@@ -97,52 +97,6 @@ std::vector<std::string> nearest_disagreements(const Case<D>& c, const KdTree<D>
   return errors;
 }
 
-// for_each_in_box against every stored (wrapped, finite) point, for boxes around
-// the queries, the whole domain, an infinite box, a point and an empty box.
-template <int D>
-std::vector<std::string> box_disagreements(const Case<D>& c, const KdTree<D>& tree) {
-  const std::vector<Vec<D>> pts = in_order(c.points, tree.order());
-  std::vector<std::pair<Vec<D>, Vec<D>>> boxes = {
-      {c.domain.lo, c.domain.hi},
-      {Vec<D>::filled(-inf), Vec<D>::filled(inf)},
-      {c.domain.hi, c.domain.lo}};
-  for (std::size_t i = 0; i < c.queries.size(); i += 3) {
-    Vec<D> half_width;
-    for (int k = 0; k < D; ++k) half_width[k] = c.radius * (0.5 + 0.3 * k);
-    boxes.emplace_back(c.queries[i] - half_width, c.queries[i] + half_width);
-    if (i < pts.size()) {
-      const Vec<D> p = c.domain.wrap(pts[i]);
-      boxes.emplace_back(p, p);
-    }
-  }
-  std::vector<std::string> errors;
-  std::vector<int> hits(pts.size());
-  for (const auto& [lo, hi] : boxes) {
-    const std::string where = "box " + show(lo) + " - " + show(hi) + ", j ";
-    std::fill(hits.begin(), hits.end(), 0);
-    tree.for_each_in_box(lo, hi, [&](std::size_t j, const Vec<D>& p) {
-      if (j >= pts.size()) {
-        errors.push_back(where + std::to_string(j) + ": index out of range");
-        return;
-      }
-      ++hits[j];
-      const Vec<D> stored = c.domain.wrap(pts[j]);
-      if (std::memcmp(&p, &stored, sizeof p) != 0)
-        errors.push_back(where + std::to_string(j) + ": point " + show(p) + ", stored " +
-                         show(stored));
-    });
-    for (std::size_t j = 0; j < pts.size(); ++j) {
-      const Vec<D> p = c.domain.wrap(pts[j]);
-      bool inside = is_finite(p);
-      for (int k = 0; k < D; ++k) inside = inside && lo[k] <= p[k] && p[k] <= hi[k];
-      if (hits[j] != (inside ? 1 : 0))
-        errors.push_back(where + std::to_string(j) + " " + show(p) + ": reported " +
-                         std::to_string(hits[j]) + " times");
-    }
-  }
-  return errors;
-}
-
 template <int D>
 void check_tree(const Case<D>& c) {
   INFO("case " << c.name << ", D = " << D << ", radius " << c.radius << ", N = "
@@ -155,7 +109,7 @@ void check_tree(const Case<D>& c) {
   REQUIRE(order.size() == c.points.size());
   check_no_errors("for_each_near", disagreements(c, in_order(c.points, tree.order()), tree));
   check_no_errors("nearest", nearest_disagreements(c, tree));
-  check_no_errors("for_each_in_box", box_disagreements(c, tree));
+  check_no_errors("for_each_in_box", box_disagreements(c, in_order(c.points, tree.order()), tree));
 }
 
 // A few tight Gaussian blobs, one of them centred on the lo corner (split by
