@@ -99,6 +99,20 @@ std::vector<Vec<D>> in_order(const std::vector<Vec<D>>& points,
   return result;
 }
 
+// What a query at q may and must report: components of dx within tol of the
+// reference; nothing farther than too_far; everything with |dx|^2 within
+// must_find_squared - the contract's inflated radius, less what rounding may move
+// a distance: points a hair beyond r (lattice neighbours at r(1 + 1e-16)).
+struct Bounds {
+  double tol, too_far, must_find_squared;
+};
+
+template <int D>
+Bounds bounds(double r, double points_magnitude, const Vec<D>& q) {
+  const double tol = tolerance(points_magnitude, q);
+  return {tol, r * (1 + 1e-12) + D * tol, std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol)};
+}
+
 // Runs every query through for_each_near(iq, report), which must call report(j, dx)
 // for each point the structure under test finds near queries[iq] (j indexes
 // `points`), and returns a description of each disagreement with the reference:
@@ -115,11 +129,7 @@ std::vector<std::string> disagreements(const Domain<D>& domain, double radius,
   std::vector<Vec<D>> found(points.size());
   for (std::size_t iq = 0; iq < queries.size(); ++iq) {
     const Vec<D>& q = queries[iq];
-    const double tol = tolerance(points_magnitude, q);
-    const double too_far = r * (1 + 1e-12) + D * tol;
-    // The contract's inflated radius, less what rounding may move a distance: points a
-    // hair beyond r (lattice neighbours at r(1 + 1e-16)) must still be found.
-    const double must_find_squared = std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol);
+    const auto [tol, too_far, must_find_squared] = bounds<D>(r, points_magnitude, q);
     const auto where = [&](std::size_t j) {
       return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + " " +
              (j < points.size() ? show(points[j]) : std::string("?")) + ": ";
@@ -179,9 +189,7 @@ std::vector<std::string> image_disagreements(const Domain<D>& domain, double rad
   };
   for (std::size_t iq = 0; iq < queries.size(); ++iq) {
     const Vec<D>& q = queries[iq];
-    const double tol = tolerance(points_magnitude, q);
-    const double too_far = r * (1 + 1e-12) + D * tol;
-    const double must_find_squared = std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol);
+    const auto [tol, too_far, must_find_squared] = bounds<D>(r, points_magnitude, q);
     const auto where = [&](std::size_t j) {
       return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + ": ";
     };
