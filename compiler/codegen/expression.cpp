@@ -72,7 +72,7 @@ class Printer {
     switch (e->kind) {
       case ExprKind::Literal: return {emit_literal(e->type, as<Literal>(e)->value), kPrimary};
       case ExprKind::ParamRef:
-        return {"params_." + cpp_name(model_.params[as<ParamRef>(e)->param].name), kPrimary};
+        return {names_.params.at(as<ParamRef>(e)->param), kPrimary};
       case ExprKind::ConstRef:
         return {names_.consts[as<ConstRef>(e)->constant], kPrimary};
       case ExprKind::VarRef: {

@@ -15,7 +15,8 @@ struct ExpressionNames {
   int home_set = 0;                                 // the set the statement's label (i) runs over
   std::vector<std::string> labels;                  // loop index per statement label
   std::function<std::string(int set, int var)> array;  // local array of a variable
-  std::vector<std::string> consts;                  // member holding each const
+  std::vector<std::string> params;                  // each param's name (default params_.NAME)
+  std::vector<std::string> consts;                  // member (or local) holding each const
   std::vector<std::string> functions;               // member function of each user fn
   std::map<int, std::string> accumulators;          // Accumulate::id -> its variable
   std::string dx_norm;                              // set when |dx| is computed once per pair

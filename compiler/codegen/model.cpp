@@ -37,6 +37,7 @@ class StatementUses : public Visitor {
   std::set<std::pair<int, int>> arrays;  // (set, var) read
   std::vector<int> labels;               // through these labels, in order of reading
   std::vector<const Accumulate*> accumulations;
+  std::set<int> params, consts;
   bool random = false;
 
  public:
@@ -47,6 +48,8 @@ class StatementUses : public Visitor {
     arrays.insert({n.set, n.var});
     labels.push_back(n.label);
   }
+  void visit(const ParamRef& n) override { params.insert(n.param); }
+  void visit(const ConstRef& n) override { consts.insert(n.constant); }
   void visit(const Random&) override { random = true; }
   void visit(const Accumulate& n) override {
     accumulations.push_back(&n);
@@ -448,6 +451,7 @@ class ModelEmitter {
   // Names every expression may use: consts and functions.
   ExpressionNames base_names() const {
     ExpressionNames names;
+    for (const Param& param : m_.params) names.params.push_back("params_." + cpp_name(param.name));
     names.consts = const_member_;
     names.functions = function_member_;
     return names;
@@ -624,6 +628,7 @@ class ModelEmitter {
     }
     comment(k.alias->reason);
     linef("void {}() {{", k.name);
+    kernel_constants(st, uses, names, locals);
 
     // Bring every search this statement needs up to date before any index
     // is taken: a rebuild may reorder its set.
@@ -671,6 +676,25 @@ class ModelEmitter {
     if (st.var == kPosition || st.var == kAlive) linef("++{};", epoch_[home]);
     line("}");
     line("");
+  }
+
+  // The params and computed consts a kernel reads, as local constants named
+  // after them: the kernel reads like the model, and the C++ compiler need not
+  // reload them after every call it cannot see into (exp in a pair loop;
+  // the seed kernel at N = 20 timed alone: 4% faster).
+  void kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
+                        NameTable& locals) {
+    if (st.schedule.skin) uses.visit(st.schedule.skin);
+    for (int p : uses.params) {
+      const Param& param = m_.params[p];
+      names.params[p] = locals.fresh(cpp_name(param.name));
+      linef("const {} {} = params_.{};", cpp_type(param.type), names.params[p], cpp_name(param.name));
+    }
+    for (int c : uses.consts) {
+      if (evaluate_constant(m_.consts[c].value, m_)) continue;  // a static constexpr member already
+      names.consts[c] = locals.fresh(cpp_name(m_.consts[c].name));
+      linef("const {} {} = {};", cpp_type(m_.consts[c].type), names.consts[c], const_member_[c]);
+    }
   }
 
   std::string buffer_member(int s, int var) {
