@@ -6,6 +6,7 @@
 #include "analysis/aliasing.hpp"
 #include "analysis/neighbourhood.hpp"
 #include "analysis/symmetry.hpp"
+#include "analysis/uniform_sums.hpp"
 #include "ir/ir.hpp"
 #include "support/source.hpp"
 
@@ -21,6 +22,7 @@ struct ModelFacts {
   AliasReport aliasing;
   NeighbourhoodReport neighbourhoods;
   PairSymmetryReport symmetry;
+  UniformSumReport uniform_sums;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

@@ -625,6 +625,8 @@ class ModelEmitter {
                           facts_.neighbourhoods.at(acc->id).reason));
       if (half_lists(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
         comment("  each pair once, from half Verlet lists: " + facts_.symmetry.at(acc->id).reason);
+      if (facts_.uniform_sums.at(acc->id).once)
+        comment("  " + facts_.uniform_sums.at(acc->id).reason);
     }
     comment(k.alias->reason);
     linef("void {}() {{", k.name);
@@ -659,7 +661,9 @@ class ModelEmitter {
     }
     std::vector<const Loop*> per_particle;
     for (const Loop& l : loops) {
-      if (l.kind == SearchFact::Kind::Neighbours && half_lists(st))
+      if (l.once)
+        loop(l, st, names);
+      else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st))
         pair_pass(l, st, names, count, locals);
       else
         per_particle.push_back(&l);
@@ -785,6 +789,7 @@ class ModelEmitter {
   struct Loop {
     int set;
     SearchFact::Kind kind;
+    bool once;  // the same for every i (uniform_sums.cpp): run before the particle loop
     std::vector<const Accumulate*> members;
   };
 
@@ -794,10 +799,12 @@ class ModelEmitter {
     for (const Accumulate* acc : accumulations) {
       const int set = st.labels[acc->label].set;
       const SearchFact::Kind kind = facts_.neighbourhoods.at(acc->id).kind;
-      auto same = std::find_if(loops.begin(), loops.end(),
-                               [&](const Loop& l) { return l.set == set && l.kind == kind; });
+      const bool once = facts_.uniform_sums.at(acc->id).once;
+      auto same = std::find_if(loops.begin(), loops.end(), [&](const Loop& l) {
+        return l.set == set && l.kind == kind && l.once == once;
+      });
       if (same == loops.end())
-        loops.push_back({set, kind, {acc}});
+        loops.push_back({set, kind, once, {acc}});
       else
         same->members.push_back(acc);
     }
@@ -831,7 +838,11 @@ class ModelEmitter {
                            cpp_type(acc.type), expression(acc.body, names));
         break;
     }
-    return acc.condition ? "if (" + expression(acc.condition, names) + ") " + step : step;
+    // No condition, or one always true (sum(j, true, ...)): no test.
+    const std::optional<double> constant =
+        acc.condition ? evaluate_constant(acc.condition, m_) : std::optional<double>(1.0);
+    if (constant && *constant != 0) return step;
+    return "if (" + expression(acc.condition, names) + ") " + step;
   }
 
   void loop(const Loop& l, const Statement& st, const ExpressionNames& names) {

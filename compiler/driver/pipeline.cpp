@@ -19,6 +19,7 @@ Compilation analyse(const SourceFile& file) {
   c.facts.aliasing = detect_aliasing(c.model);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
   c.facts.symmetry = find_pair_symmetry(c.model);
+  c.facts.uniform_sums = find_uniform_sums(c.model);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
   return c;
@@ -57,6 +58,8 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
         out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
                            st.labels[acc->label].name, fact.reason);
+        if (c.facts.uniform_sums.at(acc->id).once)
+          out += "    " + c.facts.uniform_sums.at(acc->id).reason + "\n";
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
         const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
         out += std::string("    pairs: ") +

@@ -1,6 +1,6 @@
 // The analyses' facts for small models: which accumulations are
 // neighbourhood sums and with what radius, which statements are buffered,
-// and which sums may take each pair once.
+// which sums may take each pair once, and which are the same for every i.
 #include <catch2/catch.hpp>
 
 #include "driver/pipeline.hpp"
@@ -150,4 +150,25 @@ TEST_CASE("symmetry: the reasons say what was found, in the model's terms", "[an
         "min is not a sum: only sums and counts add a pair's term to both particles");
   CHECK(symmetry_of("u[i] = sum(j in Q, |dx| < rc, m[j])").reason ==
         "j ranges over Q, not P: only i takes the term");
+}
+
+// Whether each accumulation of one statement of the 3-d model is computed once.
+std::vector<bool> once(const std::string& step_body) {
+  const partc::Compilation c = compile(step_body);
+  std::vector<bool> out;
+  for (const auto& [id, fact] : c.facts.uniform_sums) out.push_back(fact.once);
+  return out;
+}
+
+TEST_CASE("uniform sums: a sum reading nothing of i is computed once", "[analysis]") {
+  CHECK(once("u[i] -= sum(j, true, w[j]) / 10") == std::vector<bool>{true});
+  CHECK(once("u[i] = count(j, w[j] > r)") == std::vector<bool>{true});
+  CHECK(once("u[i] = w[i] * sum(j, w[j] * w[j])") == std::vector<bool>{true});
+  // Two sums, one reading i.
+  CHECK(once("u[i] = sum(j, w[j]) + sum(k, w[k] > w[i], 1.0)") == std::vector<bool>{true, false});
+  // dx reads p[i]; w[i] in the condition or the body reads i.
+  CHECK(once("u[i] = sum(j, |dx| < r, w[j])") == std::vector<bool>{false});
+  CHECK(once("u[i] = count(j, true and dx.x > 0)") == std::vector<bool>{false});
+  CHECK(once("u[i] = sum(j, w[j] - w[i])") == std::vector<bool>{false});
+  CHECK(once("u[i] = max(j, w[j] < w[i], w[j])") == std::vector<bool>{false});
 }
