@@ -260,33 +260,14 @@ PairSymmetryFact judge(const ir::Model& model, const ir::Statement& st, const ir
   return fact;
 }
 
-class AccumulationFinder : public ir::Visitor {
- public:
-  AccumulationFinder(const ir::Model& model, PairSymmetryReport& report)
-      : model_(model), report_(report) {}
-  using ir::Visitor::visit;
-
-  void find(const ir::Statement& st) {
-    st_ = &st;
-    visit(st.value);
-  }
-
- protected:
-  void visit(const ir::Accumulate& acc) override { report_[acc.id] = judge(model_, *st_, acc); }
-
- private:
-  const ir::Model& model_;
-  PairSymmetryReport& report_;
-  const ir::Statement* st_ = nullptr;
-};
-
 }  // namespace
 
 PairSymmetryReport find_pair_symmetry(const ir::Model& model) {
   PairSymmetryReport report;
-  AccumulationFinder finder(model, report);
   for (const ir::Stage& stage : model.stages)
-    for (const ir::Statement& st : stage.statements) finder.find(st);
+    for (const ir::Statement& st : stage.statements)
+      for (const ir::Accumulate* acc : ir::accumulations_in(st.value))
+        report[acc->id] = judge(model, st, *acc);
   return report;
 }
 

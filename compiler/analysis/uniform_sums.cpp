@@ -38,26 +38,13 @@ class FindsReadOfI : public ir::Visitor {
   const ir::Statement& st_;
 };
 
-class Accumulations : public ir::Visitor {
- public:
-  std::vector<const ir::Accumulate*> found;
-
- public:
-  using ir::Visitor::visit;
-
- protected:
-  void visit(const ir::Accumulate& n) override { found.push_back(&n); }
-};
-
 }  // namespace
 
 UniformSumReport find_uniform_sums(const ir::Model& model) {
   UniformSumReport report;
   for (const ir::Stage& stage : model.stages)
     for (const ir::Statement& st : stage.statements) {
-      Accumulations accumulations;
-      accumulations.visit(st.value);
-      for (const ir::Accumulate* acc : accumulations.found) {
+      for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
         FindsReadOfI reads(model, st);
         reads.visit(acc->condition);
         reads.visit(acc->body);

@@ -25,21 +25,6 @@ Compilation analyse(const SourceFile& file) {
   return c;
 }
 
-namespace {
-class AccumulationIds : public ir::Visitor {
- public:
-  std::vector<const ir::Accumulate*> found;
-
- public:
-  using ir::Visitor::visit;
-
- protected:
-  void visit(const ir::Accumulate& n) override {
-    found.push_back(&n);
-    ir::Visitor::visit(n);
-  }
-};
-}  // namespace
 
 std::string explain(const Compilation& c, const SourceFile& file) {
   std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
@@ -52,9 +37,7 @@ std::string explain(const Compilation& c, const SourceFile& file) {
       out += fmt::format("{}:{}: {} {}\n", file.path(), at.line,
                          stage.kind == ir::StageKind::Init ? "init" : "step", file.slice(st.loc));
       out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
-      AccumulationIds ids;
-      ids.visit(st.value);
-      for (const ir::Accumulate* acc : ids.found) {
+      for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
         out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
                            st.labels[acc->label].name, fact.reason);

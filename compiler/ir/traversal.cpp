@@ -102,4 +102,20 @@ Expr Mutator::mutate(const Accumulate& n, const Expr& self) {
   return std::make_shared<Accumulate>(n.type, n.reduction, n.label, c, b, n.id, n.loc);
 }
 
+std::vector<const Accumulate*> accumulations_in(const Expr& e) {
+  class Finder : public Visitor {
+   public:
+    std::vector<const Accumulate*> found;
+    using Visitor::visit;
+
+   protected:
+    void visit(const Accumulate& n) override {
+      found.push_back(&n);
+      Visitor::visit(n);
+    }
+  } finder;
+  finder.visit(e);
+  return finder.found;
+}
+
 }  // namespace partc::ir

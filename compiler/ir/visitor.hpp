@@ -5,6 +5,8 @@
 // few lines long. Call visit(expr) on a root; null handles are skipped.
 #pragma once
 
+#include <vector>
+
 #include "ir/ir.hpp"
 
 namespace partc::ir {
@@ -42,5 +44,8 @@ class Visitor {
     visit(n.body);
   }
 };
+
+// The accumulations in e, in reading order.
+std::vector<const Accumulate*> accumulations_in(const Expr& e);
 
 }  // namespace partc::ir
