@@ -147,7 +147,9 @@ class CellGrid {
       spans.count[k] = 1;
     }
     Vec<D> shift{};
-    auto cells = [&](std::size_t first, std::size_t last, const Vec<D>&, auto) { run(first, last); };
+    auto cells = [&](std::size_t first, std::size_t last, const Vec<D>&, auto) {
+      run(first, last);
+    };
     visit<0, std::false_type>(spans, 0, shift, cells);
   }
 

@@ -110,8 +110,10 @@ class OrderedCellList {
       const std::size_t in_cell = start_[c + 1] - start_[c];
       if (in_cell == 0) continue;
       std::size_t examined = 0;
-      grid_.for_each_run(points_[start_[c]], [&](std::size_t first, std::size_t last, const Vec<D>&,
-                                                 auto) { examined += start_[last + 1] - start_[first]; });
+      grid_.for_each_run(points_[start_[c]],
+                         [&](std::size_t first, std::size_t last, const Vec<D>&, auto) {
+                           examined += start_[last + 1] - start_[first];
+                         });
       total += static_cast<double>(in_cell) * static_cast<double>(examined);
     }
     return total / static_cast<double>(points_.size());
@@ -170,10 +172,11 @@ class OrderedCellList {
         any = true;
       }
       if (!any) continue;
-      grid_.for_each_run_of_box(lo, hi, [&](std::size_t first, std::size_t last,
-                                            const Vec<D>& shift, auto) {
-        if (start_[first] != start_[last + 1]) runs_.push_back({start_[first], start_[last + 1], shift});
-      });
+      grid_.for_each_run_of_box(
+          lo, hi, [&](std::size_t first, std::size_t last, const Vec<D>& shift, auto) {
+            if (start_[first] != start_[last + 1])
+              runs_.push_back({start_[first], start_[last + 1], shift});
+          });
     }
     run_start_.back() = runs_.size();
   }
@@ -184,8 +187,8 @@ class OrderedCellList {
   std::vector<std::size_t> order_;
   std::vector<std::size_t> cell_of_point_;   // build scratch, kept to reuse its memory
   std::vector<std::size_t> cell_of_sorted_;  // the cell of sorted point k
-  std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] .. run_start_[c+1]-1]
-  std::vector<std::size_t> run_start_;
+  std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
+  std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
 };
 
 }  // namespace partc

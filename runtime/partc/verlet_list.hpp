@@ -238,8 +238,9 @@ class VerletList {
       list.clear();
       for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i) {
         const std::size_t first = list.size();
-        search.for_each_near_after(
-            i, [&](std::size_t j, const Vec<D>&) { list.push_back(static_cast<std::uint32_t>(j)); });
+        search.for_each_near_after(i, [&](std::size_t j, const Vec<D>&) {
+          list.push_back(static_cast<std::uint32_t>(j));
+        });
         if (images) {  // j once, whatever its images: queries take the nearest
           std::sort(list.begin() + static_cast<std::ptrdiff_t>(first), list.end());
           list.erase(std::unique(list.begin() + static_cast<std::ptrdiff_t>(first), list.end()),

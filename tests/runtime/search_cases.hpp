@@ -113,143 +113,150 @@ Bounds bounds(double r, double points_magnitude, const Vec<D>& q) {
   return {tol, r * (1 + 1e-12) + D * tol, std::max(r * r, r * r * (1 + 1e-12) - 2 * r * D * tol)};
 }
 
-// Runs every query through for_each_near(iq, report), which must call report(j, dx)
-// for each point the structure under test finds near queries[iq] (j indexes
-// `points`), and returns a description of each disagreement with the reference:
-// every point within `radius` once, with its shortest dx = points[j] - queries[iq].
-template <int D, class ForEachNear>
-std::vector<std::string> disagreements(const Domain<D>& domain, double radius,
-                                       const std::vector<Vec<D>>& points,
-                                       const std::vector<Vec<D>>& queries,
-                                       const ForEachNear& for_each_near) {
-  const double r = radius;
-  const double points_magnitude = magnitude(domain, points);
-  std::vector<std::string> errors;
+// Where a disagreement is: the query, and the point when there is one.
+template <int D>
+std::string where(std::size_t iq, const Vec<D>& q, std::size_t j,
+                  const std::vector<Vec<D>>& points) {
+  return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + " " +
+         (j < points.size() ? show(points[j]) : std::string("?")) + ": ";
+}
+
+// One query under the contract (each point within the radius once, with its
+// shortest dx): the disagreements, appended to errors.
+template <int D, class Query>
+void check_nearest(const Domain<D>& domain, const std::vector<Vec<D>>& points, std::size_t iq,
+                   const Vec<D>& q, const Bounds& b, const Query& query,
+                   std::vector<std::string>& errors) {
   std::vector<int> hits(points.size());
   std::vector<Vec<D>> found(points.size());
-  for (std::size_t iq = 0; iq < queries.size(); ++iq) {
-    const Vec<D>& q = queries[iq];
-    const auto [tol, too_far, must_find_squared] = bounds<D>(r, points_magnitude, q);
-    const auto where = [&](std::size_t j) {
-      return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + " " +
-             (j < points.size() ? show(points[j]) : std::string("?")) + ": ";
-    };
-    std::fill(hits.begin(), hits.end(), 0);
-    for_each_near(iq, [&](std::size_t j, const Vec<D>& dx) {
-      if (j >= points.size()) {
-        errors.push_back(where(j) + "index out of range");
-        return;
-      }
-      ++hits[j];
-      found[j] = dx;
-    });
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const Vec<D> ref = reference_image(domain, points[j] - q);
-      if (hits[j] == 0) {
-        if (squared_norm(ref) <= must_find_squared)
-          errors.push_back(where(j) + "missed, dx " + show(ref));
-        continue;
-      }
-      if (hits[j] > 1)
-        errors.push_back(where(j) + "reported " + std::to_string(hits[j]) + " times");
-      if (!(norm(ref) <= too_far)) errors.push_back(where(j) + "too far, dx " + show(ref));
-      for (int k = 0; k < D; ++k) {
-        const double got = found[j][k];
-        if (std::abs(got - ref[k]) <= tol) continue;
-        // A point exactly half a box away has two shortest images; either will do.
-        const double half = 0.5 * (domain.hi[k] - domain.lo[k]);
-        const bool tie = domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= tol &&
-                         std::abs(got + ref[k]) <= tol;
-        if (!tie) {
-          errors.push_back(where(j) + "dx " + show(found[j]) + ", expected " + show(ref));
-          break;
-        }
+  query([&](std::size_t j, const Vec<D>& dx) {
+    if (j >= points.size()) {
+      errors.push_back(where(iq, q, j, points) + "index out of range");
+      return;
+    }
+    ++hits[j];
+    found[j] = dx;
+  });
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const Vec<D> ref = reference_image(domain, points[j] - q);
+    if (hits[j] == 0) {
+      if (squared_norm(ref) <= b.must_find_squared)
+        errors.push_back(where(iq, q, j, points) + "missed, dx " + show(ref));
+      continue;
+    }
+    if (hits[j] > 1)
+      errors.push_back(where(iq, q, j, points) + "reported " + std::to_string(hits[j]) + " times");
+    if (!(norm(ref) <= b.too_far))
+      errors.push_back(where(iq, q, j, points) + "too far, dx " + show(ref));
+    for (int k = 0; k < D; ++k) {
+      const double got = found[j][k];
+      if (std::abs(got - ref[k]) <= b.tol) continue;
+      // A point exactly half a box away has two shortest images; either will do.
+      const double half = 0.5 * (domain.hi[k] - domain.lo[k]);
+      const bool tie = domain.periodic[k] && std::abs(std::abs(ref[k]) - half) <= b.tol &&
+                       std::abs(got + ref[k]) <= b.tol;
+      if (!tie) {
+        errors.push_back(where(iq, q, j, points) + "dx " + show(found[j]) + ", expected " +
+                         show(ref));
+        break;
       }
     }
   }
-  return errors;
 }
 
-// As disagreements, for a radius over half a periodic length, where every image
-// of a point within the radius must be reported once (brute_force.hpp): the
-// images are the nearest one plus s whole boxes, s = -m..m per periodic
-// dimension with m enough to pass the radius, all checked; each reported
-// (j, dx) must match an image of j not yet matched.
-template <int D, class ForEachNear>
-std::vector<std::string> image_disagreements(const Domain<D>& domain, double radius,
-                                             const std::vector<Vec<D>>& points,
-                                             const std::vector<Vec<D>>& queries,
-                                             const ForEachNear& for_each_near) {
-  const double r = radius;
-  const double points_magnitude = magnitude(domain, points);
-  std::vector<std::string> errors;
+// One query for a radius over half a periodic length, where every image of a
+// point within the radius must be reported once (brute_force.hpp): the images
+// are the nearest one plus s whole boxes, s = -m..m per periodic dimension with
+// m enough to pass the radius, all checked; each reported (j, dx) must match an
+// image of j not yet matched.
+template <int D, class Query>
+void check_all_images(const Domain<D>& domain, double r, const std::vector<Vec<D>>& points,
+                      std::size_t iq, const Vec<D>& q, const Bounds& b, const Query& query,
+                      std::vector<std::string>& errors) {
   struct Image {
     Vec<D> dx;
     bool required, matched;
   };
+  std::vector<std::vector<Image>> images(points.size());
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const Vec<D> nearest = reference_image(domain, points[j] - q);
+    if (!is_finite(nearest)) continue;
+    std::array<std::vector<double>, D> offsets;  // per dimension: the shifts worth trying
+    for (int k = 0; k < D; ++k) {
+      const double L = domain.hi[k] - domain.lo[k];
+      const int m = domain.periodic[k] ? static_cast<int>(std::ceil(r / L)) + 1 : 0;
+      for (int s = -m; s <= m; ++s)
+        if (std::abs(nearest[k] + s * L) <= b.too_far) offsets[k].push_back(s * L);
+    }
+    std::array<std::size_t, D> at{};
+    bool done = false;
+    for (int k = 0; k < D; ++k) done = done || offsets[k].empty();
+    while (!done) {
+      Vec<D> dx = nearest;
+      for (int k = 0; k < D; ++k) dx[k] += offsets[k][at[k]];
+      if (norm(dx) <= b.too_far)
+        images[j].push_back({dx, squared_norm(dx) <= b.must_find_squared, false});
+      int k = 0;
+      while (k < D && ++at[k] == offsets[k].size()) at[k++] = 0;
+      done = k == D;
+    }
+  }
+  query([&](std::size_t j, const Vec<D>& dx) {
+    if (j >= points.size()) {
+      errors.push_back(where(iq, q, j, points) + "index out of range");
+      return;
+    }
+    for (Image& image : images[j]) {
+      bool close = !image.matched;
+      for (int k = 0; k < D && close; ++k) close = std::abs(dx[k] - image.dx[k]) <= b.tol;
+      if (!close) continue;
+      image.matched = true;
+      return;
+    }
+    errors.push_back(where(iq, q, j, points) + "dx " + show(dx) +
+                     " is no image within the radius, or twice");
+  });
+  for (std::size_t j = 0; j < points.size(); ++j)
+    for (const Image& image : images[j])
+      if (image.required && !image.matched)
+        errors.push_back(where(iq, q, j, points) + "missed the image dx " + show(image.dx));
+}
+
+// Runs every query through for_each_near(iq, report), which must call report(j, dx)
+// for each point the structure under test finds near queries[iq] (j indexes
+// `points`), and returns a description of each disagreement with the reference:
+// every point within `radius` once, with its shortest dx = points[j] - queries[iq];
+// with all_images (a radius over half a periodic length), every image of it.
+template <int D, class ForEachNear>
+std::vector<std::string> disagreements(const Domain<D>& domain, double radius,
+                                       const std::vector<Vec<D>>& points,
+                                       const std::vector<Vec<D>>& queries,
+                                       const ForEachNear& for_each_near, bool all_images = false) {
+  const double points_magnitude = magnitude(domain, points);
+  std::vector<std::string> errors;
   for (std::size_t iq = 0; iq < queries.size(); ++iq) {
     const Vec<D>& q = queries[iq];
-    const auto [tol, too_far, must_find_squared] = bounds<D>(r, points_magnitude, q);
-    const auto where = [&](std::size_t j) {
-      return "query " + std::to_string(iq) + " " + show(q) + ", j " + std::to_string(j) + ": ";
-    };
-    std::vector<std::vector<Image>> images(points.size());
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const Vec<D> nearest = reference_image(domain, points[j] - q);
-      if (!is_finite(nearest)) continue;
-      std::array<std::vector<double>, D> offsets;  // per dimension: the shifts worth trying
-      for (int k = 0; k < D; ++k) {
-        const double L = domain.hi[k] - domain.lo[k];
-        const int m = domain.periodic[k] ? static_cast<int>(std::ceil(r / L)) + 1 : 0;
-        for (int s = -m; s <= m; ++s)
-          if (std::abs(nearest[k] + s * L) <= too_far) offsets[k].push_back(s * L);
-      }
-      std::array<std::size_t, D> at{};
-      bool done = false;
-      for (int k = 0; k < D; ++k) done = done || offsets[k].empty();
-      while (!done) {
-        Vec<D> dx = nearest;
-        for (int k = 0; k < D; ++k) dx[k] += offsets[k][at[k]];
-        if (norm(dx) <= too_far) images[j].push_back({dx, squared_norm(dx) <= must_find_squared, false});
-        int k = 0;
-        while (k < D && ++at[k] == offsets[k].size()) at[k++] = 0;
-        done = k == D;
-      }
-    }
-    for_each_near(iq, [&](std::size_t j, const Vec<D>& dx) {
-      if (j >= points.size()) {
-        errors.push_back(where(j) + "index out of range");
-        return;
-      }
-      for (Image& image : images[j]) {
-        bool close = !image.matched;
-        for (int k = 0; k < D && close; ++k) close = std::abs(dx[k] - image.dx[k]) <= tol;
-        if (!close) continue;
-        image.matched = true;
-        return;
-      }
-      errors.push_back(where(j) + "dx " + show(dx) + " is no image within the radius, or twice");
-    });
-    for (std::size_t j = 0; j < points.size(); ++j)
-      for (const Image& image : images[j])
-        if (image.required && !image.matched)
-          errors.push_back(where(j) + "missed the image dx " + show(image.dx));
+    const Bounds b = bounds<D>(radius, points_magnitude, q);
+    const auto query = [&](const auto& report) { for_each_near(iq, report); };
+    if (all_images)
+      check_all_images(domain, radius, points, iq, q, b, query, errors);
+    else
+      check_nearest(domain, points, iq, q, b, query, errors);
   }
   return errors;
 }
 
 // The queries of c against a structure queried by position, for_each_near(q, report),
 // whose indices refer to `points` (c.points in the structure's order).
-// With all_images, against image_disagreements (BruteForce and NeighbourSearch
-// for a radius over half a periodic length).
+// With all_images, every image counts (BruteForce and NeighbourSearch for a
+// radius over half a periodic length).
 template <int D, class Search>
 std::vector<std::string> disagreements(const Case<D>& c, const std::vector<Vec<D>>& points,
                                        const Search& search, bool all_images = false) {
-  const auto query = [&](std::size_t iq, const auto& report) {
-    search.for_each_near(c.queries[iq], report);
-  };
-  return all_images ? image_disagreements(c.domain, c.radius, points, c.queries, query)
-                    : disagreements(c.domain, c.radius, points, c.queries, query);
+  return disagreements(
+      c.domain, c.radius, points, c.queries,
+      [&](std::size_t iq, const auto& report) { search.for_each_near(c.queries[iq], report); },
+      all_images);
 }
 
 // for_each_in_box against every stored (wrapped, finite) point, for boxes around

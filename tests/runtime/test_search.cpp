@@ -51,8 +51,7 @@ void check_member_queries(const std::string& name, const Case<D>& c,
                           bool all_images = false) {
   const auto query = [&](std::size_t k, const auto& report) { search.for_each_near(k, report); };
   check_no_errors(name + " by index",
-                  all_images ? image_disagreements(c.domain, c.radius, points, points, query)
-                             : disagreements(c.domain, c.radius, points, points, query));
+                  disagreements(c.domain, c.radius, points, points, query, all_images));
   using Found = std::vector<std::pair<std::size_t, Vec<D>>>;
   std::size_t differing = 0;
   for (std::size_t k = 0; k < points.size(); ++k) {
