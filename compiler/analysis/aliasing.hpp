@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/uniform_sums.hpp"
 #include "ir/ir.hpp"
 
 namespace partc {
@@ -16,6 +17,7 @@ struct AliasFact {
 // One fact per statement: facts[stage][statement].
 using AliasReport = std::vector<std::vector<AliasFact>>;
 
-AliasReport detect_aliasing(const ir::Model& model);
+// Reads inside sums computed once (uniform_sums) do not count: they see old values.
+AliasReport detect_aliasing(const ir::Model& model, const UniformSumReport& uniform_sums);
 
 }  // namespace partc

@@ -16,10 +16,10 @@ Compilation analyse(const SourceFile& file) {
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file);
   // Facts the code generator acts on. Each pass reads the IR only.
-  c.facts.aliasing = detect_aliasing(c.model);
+  c.facts.uniform_sums = find_uniform_sums(c.model);
+  c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
   c.facts.symmetry = find_pair_symmetry(c.model);
-  c.facts.uniform_sums = find_uniform_sums(c.model);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
   return c;

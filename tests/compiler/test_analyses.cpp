@@ -92,6 +92,9 @@ TEST_CASE("aliasing: reading another particle's copy of the target buffers", "[a
   CHECK_FALSE(buffered("u[i] = 2 * u[i] + sum(j, |dx| < r, w[j])"));
   CHECK_FALSE(buffered("w[i] = sum(j, |dx| < r, u[j])"));
   CHECK_FALSE(buffered("p[i] += vec(u[i], 0, 0)"));
+  // A sum computed once before the loop sees only old values.
+  CHECK_FALSE(buffered("u[i] -= sum(j, true, u[j]) / 10"));
+  CHECK(buffered("u[i] -= sum(j, true, u[j]) / 10 + sum(k, u[k] > u[i], 1.0)"));
 }
 
 TEST_CASE("symmetry: odd terms under an even condition take each pair once", "[analysis]") {
