@@ -68,18 +68,13 @@ class BruteForce {
 
   template <class F>
   void for_each_near(const Vec<D>& q, F&& f) const {
-    const Vec<D> qw = domain_.wrap(q);
-    for (std::size_t j = 0; j < points_.size(); ++j) {
-      Vec<D> dx = points_[j] - qw;
-      for (int k = 0; k < D; ++k) {  // as in Domain::minimum_image: setcc, not a branch
-        const int shift = static_cast<int>(dx[k] > half_[k]) - static_cast<int>(dx[k] < -half_[k]);
-        dx[k] -= length_[k] * shift;
-      }
-      if (all_images_)
-        for_each_image(j, dx, f);
-      else if (squared_norm(dx) <= squared_reach_)
-        f(j, dx);
-    }
+    for_each_near_wrapped(domain_.wrap(q), f);
+  }
+
+  // As for_each_near(point(k), f), for point k of the last build (no wrapping).
+  template <class F>
+  void for_each_near(std::size_t k, F&& f) const {
+    for_each_near_wrapped(points_[k], f);
   }
 
   // f(j, point) for every point with lo <= point <= hi componentwise (point as
@@ -103,45 +98,66 @@ class BruteForce {
   const Vec<D>& point(std::size_t j) const { return points_[j]; }
 
  private:
-  // f(j, d + s * L) for every integer s (0 in non-periodic dimensions) within
-  // reach, given the nearest image d. With reach < L in every periodic
-  // dimension only s = 0 and the image on the other side, s = -sign(d_k), can
-  // be within reach (|d_k| <= L/2): 2^D candidates, not 3^D. Else every shift
-  // of image_shifts_ is tried in turn.
+  // The query loop, qw wrapped into the periodic box.
   template <class F>
-  void for_each_image(std::size_t j, const Vec<D>& d, F& f) const {
-    if (reach_below_lengths_) {
-      for (unsigned sides = 0; sides < (1u << D); ++sides) {
-        if (sides & ~periodic_dims_) continue;
-        Vec<D> dx = d;
-        for (int k = 0; k < D; ++k)
-          if (sides >> k & 1u) dx[k] -= std::copysign(length_[k], d[k]);
-        if (squared_norm(dx) <= squared_reach_) f(j, dx);
-      }
+  void for_each_near_wrapped(const Vec<D>& qw, F& f) const {
+    if (all_images_) {
+      if (one_box_)
+        for_each_image(qw, one_box_shifts_, f);
+      else
+        for_each_image(qw, image_shifts_, f);
       return;
     }
-    for (const Vec<D>& shift : image_shifts_) {
-      const Vec<D> dx = d + shift;
+    for (std::size_t j = 0; j < points_.size(); ++j) {
+      Vec<D> dx = points_[j] - qw;
+      for (int k = 0; k < D; ++k) {  // as in Domain::minimum_image: setcc, not a branch
+        const int shift = static_cast<int>(dx[k] > half_[k]) - static_cast<int>(dx[k] < -half_[k]);
+        dx[k] -= length_[k] * shift;
+      }
       if (squared_norm(dx) <= squared_reach_) f(j, dx);
     }
   }
 
+  // f(j, d + shift) for every point j and shift within reach, d = points[j] - qw.
+  // Both are wrapped, so |d_k| < L_k, and the images of j within reach are
+  // d + s L with |s_k| <= ceil(reach / L_k): the shifts tried, in a fixed order.
+  // (Trying them on d itself, independent additions, was measured faster than
+  // taking the nearest image first and fewer shifts: seed kernel, N = 10.)
+  template <class Shifts, class F>
+  void for_each_image(const Vec<D>& qw, const Shifts& shifts, F& f) const {
+    for (std::size_t j = 0; j < points_.size(); ++j) {
+      const Vec<D> d = points_[j] - qw;
+      for (const Vec<D>& shift : shifts) {
+        const Vec<D> dx = d + shift;
+        if (squared_norm(dx) <= squared_reach_) f(j, dx);
+      }
+    }
+  }
+
   // The shifts s * L with |s_k| <= ceil(reach / L_k) in each periodic dimension
-  // (0 in the others), s_0 changing fastest: since |d_k| <= L_k / 2 every image
-  // within reach is among them, and a pair's images come in that fixed order.
+  // (0 in the others), s_0 changing fastest. When every periodic length exceeds
+  // the reach, s_k in {-1, 0, 1}: then also as a fixed-size table, whose loop
+  // the C++ compiler unrolls (seed kernel, N = 10: 17% faster), with an
+  // infinite shift standing for s_k != 0 in a non-periodic dimension (never
+  // within reach).
   void make_image_shifts() {
     std::array<long, D> m{}, s{};
-    for (int k = 0; k < D; ++k)
+    one_box_ = true;
+    for (int k = 0; k < D; ++k) {
       m[k] = domain_.periodic[k] ? static_cast<long>(std::ceil(reach_ / length_[k])) : 0;
+      one_box_ = one_box_ && (!domain_.periodic[k] || reach_ < length_[k]);
+    }
+    for (std::size_t c = 0; c < one_box_shifts_.size(); ++c) {
+      std::size_t code = c;
+      for (int k = 0; k < D; ++k, code /= 3) {
+        const double s_k = static_cast<double>(code % 3) - 1.0;
+        one_box_shifts_[c][k] = s_k == 0.0 ? 0.0
+                                : domain_.periodic[k] ? s_k * length_[k]
+                                                      : std::numeric_limits<double>::infinity();
+      }
+    }
     for (int k = 0; k < D; ++k) s[k] = -m[k];
     image_shifts_.clear();
-    reach_below_lengths_ = true;
-    periodic_dims_ = 0;
-    for (int k = 0; k < D; ++k)
-      if (domain_.periodic[k]) {
-        periodic_dims_ |= 1u << k;
-        reach_below_lengths_ = reach_below_lengths_ && reach_ < length_[k];
-      }
     while (true) {
       Vec<D> shift;
       for (int k = 0; k < D; ++k) shift[k] = static_cast<double>(s[k]) * length_[k];
@@ -153,14 +169,16 @@ class BruteForce {
     }
   }
 
+  static constexpr std::size_t pow3(int d) { return d == 0 ? 1 : 3 * pow3(d - 1); }
+
   Domain<D> domain_{};
   Vec<D> length_{}, half_{};
   double reach_ = 0.0;
   double squared_reach_ = 0.0;
   bool all_images_ = false;
   std::vector<Vec<D>> image_shifts_;  // all_images_ only, as the two below
-  bool reach_below_lengths_ = false;
-  unsigned periodic_dims_ = 0;        // bit k: dimension k is periodic
+  std::array<Vec<D>, pow3(D)> one_box_shifts_{};
+  bool one_box_ = false;  // every periodic length exceeds the reach: one_box_shifts_ suffice
   std::vector<Vec<D>> points_;
 };
 

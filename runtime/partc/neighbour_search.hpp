@@ -138,7 +138,7 @@ class NeighbourSearch {
     else if (kind_ == Kind::kd_tree)
       kd_tree_.for_each_near(kd_tree_.point(i), f);
     else
-      brute_force_.for_each_near(brute_force_.point(i), f);
+      brute_force_.for_each_near(i, f);
   }
 
   // The same for the neighbours j > i only: each pair once, from its first particle.
