@@ -312,11 +312,15 @@ class VerletList {
       std::fill(slab_of.begin() + static_cast<std::ptrdiff_t>(slab_start[a]),
                 slab_of.begin() + static_cast<std::ptrdiff_t>(slab_start[a + 1]),
                 static_cast<std::uint32_t>(a));
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) {
-        const std::uint32_t a = slab_of[i], b = slab_of[neighbours_[k]];
-        if (b != a && b != a + 1 && !(a == 0 && b + 1 == slabs)) return;  // keep one slab
-      }
+    std::vector<char> broken(blocks_of(n), 0);  // per block of particles, checked in parallel
+    parallel_for(broken.size(), LoopWork::blocks, [&](std::size_t block) {
+      for (std::size_t i = block * block_size; i < std::min(n, (block + 1) * block_size); ++i)
+        for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) {
+          const std::uint32_t a = slab_of[i], b = slab_of[neighbours_[k]];
+          if (b != a && b != a + 1 && !(a == 0 && b + 1 == slabs)) broken[block] = 1;
+        }
+    });
+    if (std::find(broken.begin(), broken.end(), 1) != broken.end()) return;  // keep one slab
     for (std::size_t i = slab_start[0]; i < slab_start[1]; ++i) {
       const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
       const auto stop = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i + 1]);
