@@ -136,28 +136,30 @@ class BruteForce {
 
   // The shifts s * L with |s_k| <= ceil(reach / L_k) in each periodic dimension
   // (0 in the others), s_0 changing fastest. When every periodic length exceeds
-  // the reach, s_k in {-1, 0, 1}: then also as a fixed-size table, whose loop
-  // the C++ compiler unrolls (seed kernel, N = 10: 17% faster), with an
-  // infinite shift standing for s_k != 0 in a non-periodic dimension (never
-  // within reach).
+  // the reach, s_k in {-1, 0, 1}: a fixed-size table instead, whose loop the
+  // C++ compiler unrolls (seed kernel, N = 10: 17% faster), with an infinite
+  // shift standing for s_k != 0 in a non-periodic dimension (never within reach).
   void make_image_shifts() {
-    std::array<long, D> m{}, s{};
     one_box_ = true;
+    for (int k = 0; k < D; ++k) one_box_ = one_box_ && (!domain_.periodic[k] || reach_ < length_[k]);
+    image_shifts_.clear();
+    if (one_box_) {
+      for (std::size_t c = 0; c < one_box_shifts_.size(); ++c) {
+        std::size_t code = c;
+        for (int k = 0; k < D; ++k, code /= 3) {
+          const double s_k = static_cast<double>(code % 3) - 1.0;
+          one_box_shifts_[c][k] = s_k == 0.0 ? 0.0
+                                  : domain_.periodic[k] ? s_k * length_[k]
+                                                        : std::numeric_limits<double>::infinity();
+        }
+      }
+      return;
+    }
+    std::array<long, D> m{}, s{};
     for (int k = 0; k < D; ++k) {
       m[k] = domain_.periodic[k] ? static_cast<long>(std::ceil(reach_ / length_[k])) : 0;
-      one_box_ = one_box_ && (!domain_.periodic[k] || reach_ < length_[k]);
+      s[k] = -m[k];
     }
-    for (std::size_t c = 0; c < one_box_shifts_.size(); ++c) {
-      std::size_t code = c;
-      for (int k = 0; k < D; ++k, code /= 3) {
-        const double s_k = static_cast<double>(code % 3) - 1.0;
-        one_box_shifts_[c][k] = s_k == 0.0 ? 0.0
-                                : domain_.periodic[k] ? s_k * length_[k]
-                                                      : std::numeric_limits<double>::infinity();
-      }
-    }
-    for (int k = 0; k < D; ++k) s[k] = -m[k];
-    image_shifts_.clear();
     while (true) {
       Vec<D> shift;
       for (int k = 0; k < D; ++k) shift[k] = static_cast<double>(s[k]) * length_[k];
@@ -176,9 +178,11 @@ class BruteForce {
   double reach_ = 0.0;
   double squared_reach_ = 0.0;
   bool all_images_ = false;
-  std::vector<Vec<D>> image_shifts_;  // all_images_ only, as the two below
+  // all_images_ only: one_box_ (every periodic length exceeds the reach) says
+  // which table of shifts holds them.
+  bool one_box_ = false;
   std::array<Vec<D>, pow3(D)> one_box_shifts_{};
-  bool one_box_ = false;  // every periodic length exceeds the reach: one_box_shifts_ suffice
+  std::vector<Vec<D>> image_shifts_;
   std::vector<Vec<D>> points_;
 };
 

@@ -203,12 +203,20 @@ class VerletList {
   static constexpr std::size_t block_size = 2048;
   static std::size_t blocks_of(std::size_t n) { return (n + block_size - 1) / block_size; }
 
+  // body(b, first, stop) for each block b of particles first .. stop-1 of n, in parallel.
+  template <class Body>
+  static void for_each_block(std::size_t n, Body&& body) {
+    parallel_for(blocks_of(n), LoopWork::blocks, [&](std::size_t b) {
+      body(b, b * block_size, std::min(n, (b + 1) * block_size));
+    });
+  }
+
   bool moved_more_than_half_skin(const std::vector<Vec<D>>& positions) {
     const double limit = 0.25 * skin_ * skin_;
     const std::size_t n = positions.size();
     moved_.assign(blocks_of(n), 0);
-    parallel_for(moved_.size(), LoopWork::blocks, [&](std::size_t b) {
-      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i)
+    for_each_block(n, [&](std::size_t b, std::size_t first, std::size_t stop) {
+      for (std::size_t i = first; i < stop; ++i)
         if (!(squared_norm(domain_.minimum_image(positions[i] - at_build_[i])) <= limit)) {
           moved_[b] = 1;  // also for NaN
           return;
@@ -233,10 +241,10 @@ class VerletList {
     start_[0] = 0;
     const bool images = BruteForce<D>::needs_all_images(domain, build_radius);
     block_lists_.resize(blocks_of(n));
-    parallel_for(block_lists_.size(), LoopWork::blocks, [&](std::size_t b) {
+    for_each_block(n, [&](std::size_t b, std::size_t first_i, std::size_t stop_i) {
       std::vector<std::uint32_t>& list = block_lists_[b];
       list.clear();
-      for (std::size_t i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i) {
+      for (std::size_t i = first_i; i < stop_i; ++i) {
         const std::size_t first = list.size();
         search.for_each_near_after(i, [&](std::size_t j, const Vec<D>&) {
           list.push_back(static_cast<std::uint32_t>(j));
@@ -251,9 +259,9 @@ class VerletList {
     });
     for (std::size_t i = 0; i < n; ++i) start_[i + 1] += start_[i];
     neighbours_.resize(start_[n]);
-    parallel_for(block_lists_.size(), LoopWork::blocks, [&](std::size_t b) {
+    for_each_block(n, [&](std::size_t b, std::size_t first_i, std::size_t) {
       std::copy(block_lists_[b].begin(), block_lists_[b].end(),
-                neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[b * block_size]));
+                neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[first_i]));
     });
     if (pairs_ == VerletPairs::full)
       make_full_lists();
@@ -313,8 +321,8 @@ class VerletList {
                 slab_of.begin() + static_cast<std::ptrdiff_t>(slab_start[a + 1]),
                 static_cast<std::uint32_t>(a));
     std::vector<char> broken(blocks_of(n), 0);  // per block of particles, checked in parallel
-    parallel_for(broken.size(), LoopWork::blocks, [&](std::size_t block) {
-      for (std::size_t i = block * block_size; i < std::min(n, (block + 1) * block_size); ++i)
+    for_each_block(n, [&](std::size_t block, std::size_t first, std::size_t stop) {
+      for (std::size_t i = first; i < stop; ++i)
         for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) {
           const std::uint32_t a = slab_of[i], b = slab_of[neighbours_[k]];
           if (b != a && b != a + 1 && !(a == 0 && b + 1 == slabs)) broken[block] = 1;

@@ -1,5 +1,5 @@
 // bench_threads: what a second thread buys partc's generated kernels. Each
-// workload runs with 1 and with 2 OpenMP threads (omp_set_num_threads, in one
+// workload runs with 1 and with 2 OpenMP threads (partc::with_threads, in one
 // process, on identical data), taking turns so that a slow spell of the
 // machine hits both alike; the table gives both times and the speedup.
 //
@@ -9,10 +9,10 @@
 //   `repetitions`).
 // - The LJ melt of bench_lj (examples/lj_melt.part, 32000 atoms, 100 steps
 //   from the same start; median of `repetitions` runs). Its steps are also
-//   split into those that rebuilt the Verlet lists (seen, as in bench_lj, from
-//   the particle order changing) and the rest: in the runtime the list build
-//   (VerletList::build, NeighbourSearch::build, ParticleSet::permute) is a serial
-//   loop, the force sum a parallel one.
+//   split into those that rebuilt the Verlet lists (counted, as in bench_lj, by
+//   the model's search_report) and the rest: the list build's queries run in
+//   parallel, but NeighbourSearch::build and ParticleSet::permute are serial;
+//   the force sum runs in two parallel phases of slabs.
 // The runtime promises results bitwise independent of the thread count: the
 // final LJ state of both thread counts is compared, and the answer printed.
 // The first and last rows time a loop of arithmetic alone (no memory traffic,
@@ -37,6 +37,7 @@
 
 // Generated headers have no include guard: each is included exactly once
 // (lj_melt.hpp through lj_melt_setup.hpp).
+#include "partc/parallel.hpp"
 #include "timing.hpp"
 #include "lj_melt_setup.hpp"
 #include "md_velocity.hpp"
@@ -46,14 +47,6 @@ namespace {
 constexpr int repetitions = 3;
 constexpr double min_batch_seconds = 0.2;
 constexpr int thread_counts[] = {1, 2};
-
-void set_threads(int n) {
-#if defined(_OPENMP)
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
 
 void print_row(const char* kernel, std::size_t n, double one, double two) {
   std::printf("%-40s %8zu %12.3e %12.3e %8.2f\n", kernel, n, one, two, one / two);
@@ -74,8 +67,7 @@ void arithmetic_reference(const char* label) {
   std::vector<double> te[2];
   for (int r = 0; r < repetitions; ++r)
     for (int t = 0; t < 2; ++t) {
-      set_threads(thread_counts[t]);
-      te[t].push_back(bench::seconds(loop));
+      te[t].push_back(partc::with_threads(thread_counts[t], [&] { return bench::seconds(loop); }));
     }
   print_row(label, static_cast<std::size_t>(count), bench::median(te[0]), bench::median(te[1]));
 }
@@ -93,15 +85,16 @@ void md_update(std::size_t n) {
   for (std::size_t i = 0; i < n; ++i)
     table.rows.push_back({static_cast<double>(i), uniform(), uniform()});
   model.load({{"P", table}});
-  set_threads(1);
-  const double first = bench::seconds([&] { model.step(); });  // builds the cell list
+  // The first step builds the cell list.
+  const double first = partc::with_threads(1, [&] { return bench::seconds([&] { model.step(); }); });
   const int batch = std::max(1, static_cast<int>(min_batch_seconds / first));
   std::vector<double> te[2];
   for (int r = 0; r < repetitions; ++r)
     for (int t = 0; t < 2; ++t) {
-      set_threads(thread_counts[t]);
-      bench::seconds([&] { model.step(); }, batch);
-      te[t].push_back(bench::seconds([&] { model.step(); }, batch) / batch);
+      te[t].push_back(partc::with_threads(thread_counts[t], [&] {
+        bench::seconds([&] { model.step(); }, batch);
+        return bench::seconds([&] { model.step(); }, batch) / batch;
+      }));
     }
   print_row("md velocity update, Te / s", n, bench::median(te[0]), bench::median(te[1]));
 }
@@ -137,8 +130,7 @@ void lj_melt() {
   std::vector<MeltRun> runs[2];
   for (int r = 0; r < repetitions; ++r)
     for (int t = 0; t < 2; ++t) {
-      set_threads(thread_counts[t]);
-      runs[t].push_back(melt_run(start));
+      runs[t].push_back(partc::with_threads(thread_counts[t], [&] { return melt_run(start); }));
     }
   // The run of median loop time, per thread count.
   const auto typical = [](std::vector<MeltRun> v) {
