@@ -623,8 +623,10 @@ class ModelEmitter {
     for (const Accumulate* acc : uses.accumulations) {
       comment(fmt::format("{}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
                           facts_.neighbourhoods.at(acc->id).reason));
-      if (half_lists(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
-        comment("  each pair once, from half Verlet lists: " + facts_.symmetry.at(acc->id).reason);
+      if (newton_pairs(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
+        comment((st.schedule.skin ? "  each pair once, from half Verlet lists: "
+                                  : "  each pair once when the search can walk pairs: ") +
+                facts_.symmetry.at(acc->id).reason);
       if (facts_.uniform_sums.at(acc->id).once)
         comment("  " + facts_.uniform_sums.at(acc->id).reason);
     }
@@ -660,18 +662,32 @@ class ModelEmitter {
       linef("{}.resize({});", buffer, count);
     }
     std::vector<const Loop*> per_particle;
+    std::string pairs_once;  // names the run-time choice of a search's pair walk
     for (const Loop& l : loops) {
-      if (l.once)
+      if (l.once) {
         loop(l, st, names);
-      else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st))
-        pair_pass(l, st, names, count, locals);
-      else
+      } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {
+        pair_pass(l, names, count, locals, lists_.at(&st) + "->for_each_pair");
+        for (const Accumulate* acc : l.members)
+          names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+      } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
+        const std::string& search = search_for(l.set, st);
+        pairs_once = locals.fresh("pairs_once");
+        line("// Each pair once when the search walks pairs in parallel, or the set is small.");
+        linef("const bool {} = {}.pairs_once();", pairs_once, search);
+        linef("if ({}) {{", pairs_once);
+        pair_pass(l, names, count, locals, search + ".for_each_pair");
+        line("}");
         per_particle.push_back(&l);
+      } else {
+        per_particle.push_back(&l);
+      }
     }
     // Every iteration writes only particle i's value (aliasing saw to that).
     linef("partc::parallel_for({}, partc::LoopWork::{}, [&](std::size_t {}) {{", count,
           per_particle.empty() ? "light" : "heavy", i);
-    for (const Loop* l : per_particle) loop(*l, st, names);
+    for (const Loop* l : per_particle)
+      loop(*l, st, names, l->kind == SearchFact::Kind::Neighbours ? pairs_once : "");
     assignment(st, names, buffer);
     line("});");
     const std::string target_array = array_name(home, st.var);
@@ -752,11 +768,12 @@ class ModelEmitter {
     return fmt::format("std::max({}, std::numeric_limits<double>::min())", fmt::join(parts, " + "));
   }
 
-  // Newton's third law: a statement with Verlet lists whose every neighbour sum
-  // gives j the term i gets, or its negative (analysis/symmetry.cpp), takes each
-  // pair once from half lists.
-  bool half_lists(const Statement& st) const {
-    if (!st.schedule.skin) return false;
+  // Newton's third law: a statement whose every neighbour sum gives j the term
+  // i gets, or its negative (analysis/symmetry.cpp), can take each pair once:
+  // from half lists with Verlet lists (half_lists), else from the search's pair
+  // walk when NeighbourSearch::pairs_once says it pays (else per-particle queries).
+  bool half_lists(const Statement& st) const { return st.schedule.skin && newton_pairs(st); }
+  bool newton_pairs(const Statement& st) const {
     StatementUses uses;
     uses.visit(st.value);
     bool any = false;
@@ -845,7 +862,10 @@ class ModelEmitter {
     return "if (" + expression(acc.condition, names) + ") " + step;
   }
 
-  void loop(const Loop& l, const Statement& st, const ExpressionNames& names) {
+  // The loop of one particle i over its partners; with pairs_once (the name of
+  // the run-time choice) the totals come from the pair walk's sums instead.
+  void loop(const Loop& l, const Statement& st, const ExpressionNames& names,
+            const std::string& pairs_once = "") {
     UsesDx dx;
     bool reads_j = false;
     for (const Accumulate* acc : l.members) {
@@ -867,6 +887,12 @@ class ModelEmitter {
     const std::string j = names.labels[l.members.front()->label];
     const std::string i = names.labels[0];
     const std::string home_p = names.array(st.set, kPosition);
+    if (!pairs_once.empty()) {
+      linef("if ({}) {{", pairs_once);
+      for (const Accumulate* acc : l.members)
+        linef("{} = {}[{}];", names.accumulators.at(acc->id), pair_sums_.at(acc->id).first, i);
+      line("} else {");
+    }
     if (l.kind == SearchFact::Kind::Neighbours) {
       if (st.schedule.skin)
         linef("{}->for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", lists_.at(&st), i,
@@ -877,6 +903,7 @@ class ModelEmitter {
               dx.dx ? " dx" : "");
       out_ += body;
       line("});");
+      if (!pairs_once.empty()) line("}");
     } else {
       linef("for (std::size_t {0} = 0; {0} < {1}.size(); ++{0}) {{", j, set_member_[l.set]);
       if (dx.dx)
@@ -887,26 +914,24 @@ class ModelEmitter {
     }
   }
 
-  // The sums of a half-list loop, pair by pair, into per-particle member
-  // vectors (kept between steps for their memory) that the particle loop reads.
-  void pair_pass(const Loop& l, const Statement& st, ExpressionNames& names,
-                 const std::string& count, NameTable& locals) {
+  // The sums of a loop over pairs (walk: half lists' or a search's
+  // for_each_pair), pair by pair, into per-particle member vectors (kept
+  // between steps for their memory) that the particle loop reads.
+  void pair_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
+                 NameTable& locals, const std::string& walk) {
     const std::string i = names.labels[0];
     const std::string j = names.labels[l.members.front()->label];
     UsesDx dx;
     for (const Accumulate* acc : l.members) {
       dx.visit(acc->condition);
       dx.visit(acc->body);
-      const std::string sums = pair_sums_member(*acc);
-      linef("{}.assign({}, {});", sums, count, identity(*acc));
-      names.accumulators[acc->id] = sums + "[" + i + "]";
+      linef("{}.assign({}, {});", pair_sums_member(*acc), count, identity(*acc));
     }
     ExpressionNames inner = names;
     inner.dx_norm = dx.norm ? "dx_norm" : "";
     const std::string term = locals.fresh("term");
     line("// Each pair once (Newton's third law): i and j get the same term, or opposite ones.");
-    linef("{}->for_each_pair([&](std::size_t {}, std::size_t {}, const Vec&{}) {{", lists_.at(&st), i,
-          j, dx.dx ? " dx" : "");
+    linef("{}([&](std::size_t {}, std::size_t {}, const Vec&{}) {{", walk, i, j, dx.dx ? " dx" : "");
     if (dx.norm) line("const double dx_norm = partc::norm(dx);");
     for (const Accumulate* acc : l.members) {
       const std::string& sums = pair_sums_.at(acc->id).first;
@@ -997,7 +1022,7 @@ class ModelEmitter {
       linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
             source_text(st->schedule.skin->loc));
     for (const auto& [id, sums] : pair_sums_)
-      linef("std::vector<{}> {};  // per particle, a half-list sum", sums.second, sums.first);
+      linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second, sums.first);
     for (const auto& [key, buffer] : buffers_)
       linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second, buffer.first,
             m_.sets[key.first].vars[key.second].name);

@@ -46,7 +46,11 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
         const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
         out += std::string("    pairs: ") +
-               (pairs.newton ? "each pair once with Verlet lists (Newton's third law): "
+               (pairs.newton ? (st.schedule.skin
+                                    ? "each pair once, from half Verlet lists (Newton's third law): "
+                                    : "each pair once (Newton's third law) when the search "
+                                      "walks pairs in parallel (a cell list) or the set is small "
+                                      "enough for one thread; else per-particle queries: ")
                              : "both ways: ") +
                pairs.reason + "\n";
         if (st.schedule.skin)

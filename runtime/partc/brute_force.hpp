@@ -68,13 +68,22 @@ class BruteForce {
 
   template <class F>
   void for_each_near(const Vec<D>& q, F&& f) const {
-    for_each_near_wrapped(domain_.wrap(q), f);
+    for_each_near_wrapped(domain_.wrap(q), 0, f);
   }
 
   // As for_each_near(point(k), f), for point k of the last build (no wrapping).
   template <class F>
   void for_each_near(std::size_t k, F&& f) const {
-    for_each_near_wrapped(points_[k], f);
+    for_each_near_wrapped(points_[k], 0, f);
+  }
+
+  // Each pair once: f(i, j, dx) for every i and every j >= i that
+  // for_each_near(i) reports, with the same dx, i ascending, then j, then
+  // image. So f(i, i, 0) once per point, and i's own images if any.
+  template <class F>
+  void for_each_pair(F&& f) const {
+    for (std::size_t i = 0; i < points_.size(); ++i)
+      for_each_near_wrapped(points_[i], i, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
   }
 
   // f(j, point) for every point with lo <= point <= hi componentwise (point as
@@ -98,17 +107,17 @@ class BruteForce {
   const Vec<D>& point(std::size_t j) const { return points_[j]; }
 
  private:
-  // The query loop, qw wrapped into the periodic box.
+  // The query loop over points first.., qw wrapped into the periodic box.
   template <class F>
-  void for_each_near_wrapped(const Vec<D>& qw, F& f) const {
+  void for_each_near_wrapped(const Vec<D>& qw, std::size_t first, F&& f) const {
     if (all_images_) {
       if (one_box_)
-        for_each_image(qw, one_box_shifts_, f);
+        for_each_image(qw, first, one_box_shifts_, f);
       else
-        for_each_image(qw, image_shifts_, f);
+        for_each_image(qw, first, image_shifts_, f);
       return;
     }
-    for (std::size_t j = 0; j < points_.size(); ++j) {
+    for (std::size_t j = first; j < points_.size(); ++j) {
       Vec<D> dx = points_[j] - qw;
       for (int k = 0; k < D; ++k) {  // as in Domain::minimum_image: setcc, not a branch
         const int shift = static_cast<int>(dx[k] > half_[k]) - static_cast<int>(dx[k] < -half_[k]);
@@ -118,14 +127,14 @@ class BruteForce {
     }
   }
 
-  // f(j, d + shift) for every point j and shift within reach, d = points[j] - qw.
+  // f(j, d + shift) for every point j >= first and shift within reach, d = points[j] - qw.
   // Both are wrapped, so |d_k| < L_k, and the images of j within reach are
   // d + s L with |s_k| <= ceil(reach / L_k): the shifts tried, in a fixed order.
   // (Trying them on d itself, independent additions, was measured faster than
   // taking the nearest image first and fewer shifts: seed kernel, N = 10.)
   template <class Shifts, class F>
-  void for_each_image(const Vec<D>& qw, const Shifts& shifts, F& f) const {
-    for (std::size_t j = 0; j < points_.size(); ++j) {
+  void for_each_image(const Vec<D>& qw, std::size_t first, const Shifts& shifts, F& f) const {
+    for (std::size_t j = first; j < points_.size(); ++j) {
       const Vec<D> d = points_[j] - qw;
       for (const Vec<D>& shift : shifts) {
         const Vec<D> dx = d + shift;

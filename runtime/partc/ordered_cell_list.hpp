@@ -21,6 +21,8 @@
 //   cell search of for_each_near(q) (at 3 points per cell in 2D, measured: that
 //   search was ~25% of a query). The runs are a table of a few entries per
 //   occupied cell, rebuilt with the list.
+// - for_each_pair walks each pair once, in parallel slabs of cell planes when
+//   the runs allow it (slab_schedule.hpp), which build checks.
 #pragma once
 
 #include <algorithm>
@@ -30,6 +32,7 @@
 
 #include "partc/cell_grid.hpp"
 #include "partc/domain.hpp"
+#include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -54,6 +57,7 @@ class OrderedCellList {
     points_.resize(n);
     for (std::size_t k = 0; k < n; ++k) points_[k] = domain.wrap(points[order_[k]]);
     build_runs_of_cells();
+    make_pair_slabs();
   }
 
   template <class F>
@@ -67,7 +71,7 @@ class OrderedCellList {
   // As for_each_near(point(k), f), for point k of the last build (sorted order).
   template <class F>
   void for_each_near(std::size_t k, F&& f) const {
-    for_each_near_from(k, 0, f);
+    for_each_near_between(k, 0, points_.size(), f);
   }
 
   // f(j, point) for every point with lo <= point <= hi componentwise (point as
@@ -84,8 +88,31 @@ class OrderedCellList {
   // first point. About half the work: runs of points before k are skipped.
   template <class F>
   void for_each_near_after(std::size_t k, F&& f) const {
-    for_each_near_from(k, k + 1, f);
+    for_each_near_between(k, k + 1, points_.size(), f);
   }
+
+  // Each pair once: f(i, i, 0) for every point but NaN ones and f(i, j, dx) for
+  // every j > i that for_each_near(i) reports, with the same dx, in the slabs
+  // of pair_slabs() (slab_schedule.hpp): in parallel when build found that
+  // every pair obeys the slab rule, else serially, i ascending.
+  template <class F>
+  void for_each_pair(F&& f) const {
+    const std::size_t n = points_.size(), last = pair_slabs_.count() - 1;
+    // Slab 0's pairs from here on cross the periodic edge: they run with the last slab.
+    const std::size_t edge = last > 0 ? pair_slabs_.start(last) : n;
+    pair_slabs_.for_each_slab([&](std::size_t a) {
+      for (std::size_t i = pair_slabs_.start(a); i < pair_slabs_.start(a + 1); ++i) {
+        if (!is_finite(points_[i])) continue;
+        f(i, i, Vec<D>::zero());
+        for_each_near_between(i, i + 1, a == 0 ? edge : n,
+                              [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
+      }
+      if (a == last && a > 0)
+        for (std::size_t i = pair_slabs_.start(0); i < pair_slabs_.start(1); ++i)
+          for_each_near_between(i, edge, n, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
+    });
+  }
+  const SlabSchedule& pair_slabs() const { return pair_slabs_; }
 
   // Where each plane of cells along the first dimension begins, and its end:
   // plane a holds points plane_starts()[a] .. plane_starts()[a+1]-1. Cells are
@@ -126,20 +153,22 @@ class OrderedCellList {
   const Vec<D>& point(std::size_t k) const { return points_[k]; }
 
  private:
+  // The member query of point k, for the points from <= j < until only.
   template <class F>
-  void for_each_near_from(std::size_t k, std::size_t from, F& f) const {
+  void for_each_near_between(std::size_t k, std::size_t from, std::size_t until, F&& f) const {
     if (!grid_.shifts_suffice()) {
       for_each_near(points_[k], [&](std::size_t j, const Vec<D>& dx) {
-        if (j >= from) f(j, dx);
+        if (j >= from && j < until) f(j, dx);
       });
       return;
     }
     const std::size_t cell = cell_of_sorted_[k];
     for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r) {
       const std::size_t first = std::max(runs_[r].first, from);
-      if (first < runs_[r].stop)
-        grid_.scan(std::false_type{}, first, runs_[r].stop, [](std::size_t j) { return j + 1; },
-                   points_, points_[k] + runs_[r].shift, f);
+      const std::size_t stop = std::min(runs_[r].stop, until);
+      if (first < stop)
+        grid_.scan(std::false_type{}, first, stop, [](std::size_t j) { return j + 1; }, points_,
+                   points_[k] + runs_[r].shift, f);
     }
   }
 
@@ -181,6 +210,30 @@ class OrderedCellList {
     run_start_.back() = runs_.size();
   }
 
+  // The slabs of for_each_pair from the planes of cells (needing cells at
+  // least the radius wide: not in exact mode), if every run of every occupied
+  // cell obeys the slab rule for the pairs j > i it holds; else one slab.
+  void make_pair_slabs() {
+    const std::size_t n = points_.size();
+    pair_slabs_ = SlabSchedule(n);
+    if (!grid_.shifts_suffice()) return;
+    const SlabSchedule slabs = SlabSchedule::of_planes(plane_starts(), n);
+    if (slabs.count() == 1) return;
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      if (start_[c] == start_[c + 1]) continue;
+      const std::size_t a = slabs.slab_of(start_[c]);
+      for (std::size_t r = run_start_[c]; r != run_start_[c + 1]; ++r) {
+        const std::size_t first = std::max(runs_[r].first, start_[c] + 1);
+        if (first >= runs_[r].stop) continue;
+        // The slabs of points first .. stop-1 form an interval from lo (>= a) to hi.
+        const std::size_t lo = slabs.slab_of(first), hi = slabs.slab_of(runs_[r].stop - 1);
+        const bool near = hi <= a + 1, across = a == 0 && lo + 1 == slabs.count();
+        if (!near && !across) return;
+      }
+    }
+    pair_slabs_ = slabs;
+  }
+
   CellGrid<D> grid_;
   std::vector<Vec<D>> points_;               // wrapped, sorted by cell
   std::vector<std::size_t> start_;           // cell c holds points start_[c] .. start_[c+1]-1
@@ -189,6 +242,7 @@ class OrderedCellList {
   std::vector<std::size_t> cell_of_sorted_;  // the cell of sorted point k
   std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
   std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
+  SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
 };
 
 }  // namespace partc

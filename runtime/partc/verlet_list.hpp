@@ -28,17 +28,11 @@
 // f(i, j, dx) once per pair within radius, from the lower index i, plus
 // f(i, i, 0) once per particle (the full lists include j == i too), so a
 // caller gives the term to both particles and evaluates half as many. The
-// calls run in parallel yet deterministically: the particles are sorted by
-// cell, so the planes of cells along the first dimension are blocks of
-// indices; planes are grouped into an even number S >= 4 of slabs, and a pair
-// joins a slab to itself, to the next slab, or (across a periodic edge) slab
-// 0 to slab S - 1. Phase 1 runs the even slabs' pairs concurrently, phase 2
-// the odd slabs' (and with slab S - 1, slab 0's pairs across the edge): calls
-// running at once never share an index, and each particle receives its terms
-// in one fixed order for any number of threads. Every pair is checked against
-// that rule at the build; fewer than 4 planes, a search other than the cell
-// list (clustered or tiny sets), or a pair breaking the rule mean one slab
-// (serial pair calls).
+// calls run in parallel yet deterministically, in the slabs of the search's
+// cell list (slab_schedule.hpp); every pair is checked against the slab rule
+// at the build; fewer than 4 planes, a search other than the cell list
+// (clustered or tiny sets), or a pair breaking the rule mean one slab (serial
+// pair calls).
 //
 // Surprises:
 // - A rebuild may REORDER the set (as NeighbourSearch::build): indices taken
@@ -75,6 +69,7 @@
 #include "partc/domain.hpp"
 #include "partc/neighbour_search.hpp"
 #include "partc/parallel.hpp"
+#include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -131,21 +126,18 @@ class VerletList {
   template <class F>
   void for_each_pair(F&& f) const {
     assert(pairs_ == VerletPairs::half);
-    const std::size_t slabs = slab_start_.size() - 1;
     const auto pairs_of = [&](std::size_t i, std::size_t first, std::size_t stop) {
       filter(i, first, stop, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
     };
-    for (std::size_t phase = 0; phase < std::min<std::size_t>(2, slabs); ++phase)
-      parallel_for((slabs - phase + 1) / 2, LoopWork::blocks, [&](std::size_t task) {
-        const std::size_t a = phase + 2 * task;
-        for (std::size_t i = slab_start_[a]; i < slab_start_[a + 1]; ++i) {
-          f(i, i, Vec<D>::zero());
-          pairs_of(i, start_[i], across_[i]);
-        }
-        if (a + 1 == slabs)
-          for (std::size_t i = slab_start_[0]; i < slab_start_[1]; ++i)
-            pairs_of(i, across_[i], start_[i + 1]);
-      });
+    slabs_.for_each_slab([&](std::size_t a) {
+      for (std::size_t i = slabs_.start(a); i < slabs_.start(a + 1); ++i) {
+        f(i, i, Vec<D>::zero());
+        pairs_of(i, start_[i], across_[i]);
+      }
+      if (a + 1 == slabs_.count())
+        for (std::size_t i = slabs_.start(0); i < slabs_.start(1); ++i)
+          pairs_of(i, across_[i], start_[i + 1]);
+    });
   }
 
   std::size_t rebuild_count() const { return rebuild_count_; }
@@ -165,7 +157,7 @@ class VerletList {
     return text.str();
   }
   // Half lists: the slabs of the parallel schedule (1: serial).
-  std::size_t slab_count() const { return slab_start_.size() - 1; }
+  std::size_t slab_count() const { return slabs_.count(); }
 
  private:
   // g(j, dx) for the entries first .. stop-1 of particle i's list within the radius.
@@ -302,41 +294,36 @@ class VerletList {
     start_ = std::move(full_start);
   }
 
-  // The slabs of for_each_pair from the planes of the search's cell list (an odd
-  // count: the last two planes make one slab), and across_: per particle, where
-  // its pairs across the periodic edge (slab 0 to slab S - 1) begin, moved to the
-  // end of its list. One slab unless every pair obeys the rule.
+  // The slabs of for_each_pair from the planes of the search's cell list, and
+  // across_: per particle, where its pairs across the periodic edge (slab 0 to
+  // slab S - 1) begin, moved to the end of its list. One slab unless every
+  // pair obeys the rule.
   void make_slabs(const std::vector<std::size_t>& planes) {
     const std::size_t n = start_.size() - 1;
-    const std::size_t plane_count = planes.empty() ? 0 : planes.size() - 1;
-    slab_start_ = {0, n};
+    slabs_ = SlabSchedule(n);
     across_.assign(start_.begin() + 1, start_.end());
-    if (plane_count < 4) return;
-    const std::size_t slabs = plane_count - plane_count % 2;
-    std::vector<std::size_t> slab_start(planes.begin(), planes.begin() + slabs + 1);
-    slab_start[slabs] = n;
+    const SlabSchedule slabs = SlabSchedule::of_planes(planes, n);
+    if (slabs.count() == 1) return;
     std::vector<std::uint32_t> slab_of(n);
-    for (std::size_t a = 0; a < slabs; ++a)
-      std::fill(slab_of.begin() + static_cast<std::ptrdiff_t>(slab_start[a]),
-                slab_of.begin() + static_cast<std::ptrdiff_t>(slab_start[a + 1]),
+    for (std::size_t a = 0; a < slabs.count(); ++a)
+      std::fill(slab_of.begin() + static_cast<std::ptrdiff_t>(slabs.start(a)),
+                slab_of.begin() + static_cast<std::ptrdiff_t>(slabs.start(a + 1)),
                 static_cast<std::uint32_t>(a));
     std::vector<char> broken(blocks_of(n), 0);  // per block of particles, checked in parallel
     for_each_block(n, [&](std::size_t block, std::size_t first, std::size_t stop) {
       for (std::size_t i = first; i < stop; ++i)
-        for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) {
-          const std::uint32_t a = slab_of[i], b = slab_of[neighbours_[k]];
-          if (b != a && b != a + 1 && !(a == 0 && b + 1 == slabs)) broken[block] = 1;
-        }
+        for (std::size_t k = start_[i]; k < start_[i + 1]; ++k)
+          if (!slabs.allows(slab_of[i], slab_of[neighbours_[k]])) broken[block] = 1;
     });
     if (std::find(broken.begin(), broken.end(), 1) != broken.end()) return;  // keep one slab
-    for (std::size_t i = slab_start[0]; i < slab_start[1]; ++i) {
+    for (std::size_t i = slabs.start(0); i < slabs.start(1); ++i) {
       const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
       const auto stop = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i + 1]);
       const auto across = std::stable_partition(
-          first, stop, [&](std::uint32_t j) { return slab_of[j] + 1 != slabs; });
+          first, stop, [&](std::uint32_t j) { return slab_of[j] + 1 != slabs.count(); });
       across_[i] = start_[i] + static_cast<std::size_t>(across - first);
     }
-    slab_start_ = std::move(slab_start);
+    slabs_ = slabs;
   }
 
   // The search measures a pair with the query point shifted by a box length, the
@@ -367,7 +354,7 @@ class VerletList {
   std::vector<std::uint32_t> neighbours_;
   std::vector<std::vector<std::uint32_t>> block_lists_;  // build scratch, kept for its memory
   std::vector<char> moved_;                              // update scratch: per block
-  std::vector<std::size_t> slab_start_{0, 0};  // half: slab a holds particles slab_start_[a] ..
+  SlabSchedule slabs_;               // half: the parallel schedule of for_each_pair
   std::vector<std::size_t> across_;  // half: i's pairs across the periodic edge: across_[i] ..
 };
 

@@ -1,9 +1,15 @@
 // Every search structure a schedule can choose gives the same sums
 // (tests/e2e/search_choices.part), checked against a brute-force loop over
 // all pairs written here, while the particles move and Verlet lists are
-// reused and rebuilt; so do half Verlet lists (each pair once), for an odd
-// force, an even count and an even weighted sum.
+// reused and rebuilt; so do half Verlet lists and, on a small set, the pair
+// walks of each search (each pair once), for an odd force, an even count and
+// an even weighted sum.
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
 
 #include "reference.hpp"
 #include "search_choices.hpp"
@@ -44,34 +50,50 @@ double worst(const std::vector<partc::Vec<2>>& got, const std::vector<Vec2>& wan
   return w;
 }
 
+double relative_error(const std::vector<double>& got, const std::vector<double>& want) {
+  double w = 0;
+  for (std::size_t k = 0; k < got.size(); ++k) w = std::max(w, std::abs(got[k] - want[k]) / want[k]);
+  return w;
+}
+
 }  // namespace
 
 TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with brute force",
           "[e2e][search]") {
+  // Statements that may take each pair once walk the pairs of the cell list
+  // (auto, cells) at both sizes, in parallel slabs; those of brute force and
+  // the k-d tree only at 150 particles (few enough for one thread), with a
+  // larger radius so that each particle still has a few neighbours.
+  const auto [n, r] = GENERATE(std::make_pair(1500, 0.04), std::make_pair(150, 0.12));
   Model model;
+  model.params().N = n;
+  model.params().r = r;
   model.set_seed(9);
   model.init();
   for (int step = 0; step < 12; ++step) {
     const auto before = reference::positions_by_id(model.P());
     const auto m = reference::values_by_id<Model::P_m>(model.P());
     model.step();  // forces at `before`, then the particles move
-    const Sums sums = reference_sums(before, m, model.params().r);
+    const Sums sums = reference_sums(before, m, r);
     const std::vector<Vec2>& want = sums.force;
     double scale = 0;
     for (const Vec2& f : want) scale = std::max(scale, reference::norm(f));
     REQUIRE(scale > 0);
-    INFO("step " << step);
+    INFO("N = " << n << ", step " << step);
     CHECK(worst(reference::values_by_id<Model::P_f_auto>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_brute>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_cells>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_tree>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_lists>(model.P()), want) <= 1e-12 * scale);
     CHECK(worst(reference::values_by_id<Model::P_f_pairs>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_g_auto>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_g_brute>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_g_cells>(model.P()), want) <= 1e-12 * scale);
+    CHECK(worst(reference::values_by_id<Model::P_g_tree>(model.P()), want) <= 1e-12 * scale);
     CHECK(reference::values_by_id<Model::P_close>(model.P()) == sums.close);
-    const auto weight = reference::values_by_id<Model::P_weight>(model.P());
-    double weight_error = 0;
-    for (std::size_t k = 0; k < weight.size(); ++k)
-      weight_error = std::max(weight_error, std::abs(weight[k] - sums.weight[k]) / sums.weight[k]);
-    CHECK(weight_error <= 1e-12);
+    CHECK(reference::values_by_id<Model::P_close_auto>(model.P()) == sums.close);
+    CHECK(relative_error(reference::values_by_id<Model::P_weight>(model.P()), sums.weight) <= 1e-12);
+    CHECK(relative_error(reference::values_by_id<Model::P_weight_auto>(model.P()), sums.weight) <=
+          1e-12);
   }
 }
