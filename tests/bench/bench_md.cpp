@@ -11,8 +11,12 @@
 // of floor(1000/N)+1 updates. Two cutoffs:
 //   rc = sqrt(3/N)    about 3*pi neighbours per particle whatever N: N/Te flat;
 //   rc = sqrt(3/500)  the neighbour count grows with N: N/Te falls like 1/N.
-// A third column times the hand-written O(N^2) loop over all pairs, for small
-// N only, to show where brute force beats a cell list.
+// The force is odd in dx, so partc takes each pair once (Newton's third law:
+// j gets the opposite of i's term). Te_hand is the paper's kernel, a sum per
+// particle over its neighbours; Te_pairs the same hand-written cell list
+// taking each pair once, for a like-for-like ratio. A last column times the
+// hand-written O(N^2) loop over all pairs, for small N only, to show where
+// brute force beats a cell list.
 //
 // Usage: bench_md (no arguments; see .ci/bench).
 #include <algorithm>
@@ -73,13 +77,25 @@ Positions uniform_positions(std::size_t n, std::uint64_t seed) {
 }
 
 // The seed's pair force -exp(-r) dx / r for 0 < r < rc, added to (fx, fy):
-// both hand-written kernels share it, as a hand-writer would.
+// the hand-written kernels share it, as a hand-writer would. With (gx, gy),
+// each pair once (Newton's third law): j gets the opposite force.
 inline void add_pair_force(double dx, double dy, double r2, double rc2, double& fx, double& fy) {
   if (r2 < rc2 && r2 > 0.0) {
     const double r = std::sqrt(r2);
     const double s = -std::exp(-r) / r;
     fx += s * dx;
     fy += s * dy;
+  }
+}
+inline void add_pair_force(double dx, double dy, double r2, double rc2, double& fx, double& fy,
+                           double& gx, double& gy) {
+  if (r2 < rc2 && r2 > 0.0) {
+    const double r = std::sqrt(r2);
+    const double s = -std::exp(-r) / r;
+    fx += s * dx;
+    fy += s * dy;
+    gx -= s * dx;
+    gy -= s * dy;
   }
 }
 
@@ -141,6 +157,37 @@ class HandCellList {
       }
   }
 
+  // The same, each pair once (Newton's third law): a cell meets its own pairs
+  // j > i and the 4 cells after it in the stencil (the other 4 meet it from
+  // their side); the force goes to i, and its opposite to j.
+  void update_velocities_pairs() {
+    const double rc2 = rc2_, c = c_;
+    fx_.assign(x_.size(), 0.0);
+    fy_.assign(x_.size(), 0.0);
+    for (std::size_t cy = 0; cy < n_side_; ++cy)
+      for (std::size_t cx = 0; cx < n_side_; ++cx) {
+        const std::array<NeighbourCell, 9> around = neighbour_cells(cx, cy);
+        const std::size_t cell = cy * n_side_ + cx;
+        for (std::size_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
+          double fx = 0.0, fy = 0.0;
+          for (std::size_t k = own_cell; k < around.size(); ++k) {
+            const NeighbourCell& nc = around[k];
+            const double xi = x_[i] - nc.shift_x, yi = y_[i] - nc.shift_y;
+            for (std::size_t j = k == own_cell ? i + 1 : nc.first; j < nc.last; ++j) {
+              const double dx = x_[j] - xi, dy = y_[j] - yi;
+              add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy, fx_[j], fy_[j]);
+            }
+          }
+          fx_[i] += fx;
+          fy_[i] += fy;
+        }
+      }
+    for (std::size_t i = 0; i < x_.size(); ++i) {
+      vx_[i] += c * fx_[i];
+      vy_[i] += c * fy_[i];
+    }
+  }
+
   // Pairs (i, j) with 0 < |dx| < rc, divided by N.
   double mean_neighbours() const {
     std::size_t pairs = 0;
@@ -179,6 +226,8 @@ class HandCellList {
     return cy * n_side_ + cx;
   }
 
+  // neighbour_cells' stencil, rows y - 1, y, y + 1: the cell itself is the 5th.
+  static constexpr std::size_t own_cell = 4;
   std::array<NeighbourCell, 9> neighbour_cells(std::size_t cx, std::size_t cy) const {
     // Cell c + offset along one axis, wrapped, and the shift its particles need.
     const auto wrapped = [n = n_side_](std::size_t c, int offset) -> std::pair<std::size_t, double> {
@@ -202,6 +251,7 @@ class HandCellList {
   double rc2_, c_;
   std::vector<std::size_t> cell_start_;  // cell k holds particles cell_start_[k] .. cell_start_[k+1]-1
   std::vector<double> x_, y_, vx_, vy_;  // sorted by cell
+  std::vector<double> fx_, fy_;          // update_velocities_pairs: the forces
   std::vector<std::size_t> input_index_;  // particle k of the sorted order is input particle input_index_[k]
 };
 
@@ -253,6 +303,34 @@ class HandBruteForce {
     }
   }
 
+  // The same, each pair once (Newton's third law): pairs j > i, the force to
+  // i and its opposite to j. (i's own images lie a box length away, beyond rc.)
+  void update_velocities_pairs() {
+    const double rc2 = rc2_, c = c_;
+    const std::size_t n = x_.size();
+    fx_.assign(n, 0.0);
+    fy_.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double fx = 0.0, fy = 0.0;
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (images_) {
+          for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy) {
+              const double dx = x_[j] - x_[i] + sx * box, dy = y_[j] - y_[i] + sy * box;
+              add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy, fx_[j], fy_[j]);
+            }
+          continue;
+        }
+        double dx = x_[j] - x_[i], dy = y_[j] - y_[i];
+        dx -= box * ((dx > 0.5 * box) - (dx < -0.5 * box));
+        dy -= box * ((dy > 0.5 * box) - (dy < -0.5 * box));
+        add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy, fx_[j], fy_[j]);
+      }
+      vx_[i] += c * (fx + fx_[i]);
+      vy_[i] += c * (fy + fy_[i]);
+    }
+  }
+
   // Pairs (i, j) with 0 < |dx| < rc, every image counted, divided by N.
   double mean_neighbours() const {
     std::size_t pairs = 0;
@@ -275,6 +353,7 @@ class HandBruteForce {
 
  private:
   std::vector<double> x_, y_, vx_, vy_;
+  std::vector<double> fx_, fy_;  // update_velocities_pairs: forces from the j < i
   double rc2_, c_;
   bool images_;
 };
@@ -344,7 +423,7 @@ struct Cutoff {
 
 struct Row {
   double neighbours;
-  double te_partc, te_hand, te_brute;  // te_brute < 0: not measured
+  double te_partc, te_hand, te_pairs, te_brute;  // te_brute < 0: not measured
   bool hand_is_brute_force;            // too few cells for the hand-written cell list
 };
 
@@ -357,18 +436,33 @@ Row measure(std::size_t n, double rc) {
   // Brute force: the third column, and the hand-written kernel where cells cannot be used.
   std::optional<HandBruteForce> brute;
   if (n <= brute_force_max_n || !cells) brute.emplace(positions, rc, force_strength);
+  // The hand-written kernel taking each pair once, as partc does for this
+  // force: with the cell list, or by brute force where cells cannot be used.
+  std::optional<HandCellList> cell_pairs = cells;
+  std::optional<HandBruteForce> brute_pairs;
+  if (!cells) brute_pairs = brute;
+  const auto update_pairs = [&] {
+    if (cell_pairs)
+      cell_pairs->update_velocities_pairs();
+    else
+      brute_pairs->update_velocities_pairs();
+  };
 
   // One update each from v = 0, compared before anything is timed. partc's
   // first step() also builds its neighbour search, which the paper leaves out of Te.
   partc_model.step();
   if (cells) cells->update_velocities();
   if (brute) brute->update_velocities();
+  update_pairs();
   const std::vector<Vec2> v_reference = cells ? cells->velocities() : brute->velocities();
   const char* reference_name = cells ? "hand-written cell list" : "hand-written brute force";
   require_agreement("partc", velocities(partc_model), reference_name, v_reference, n, rc);
   if (cells && brute)
     require_agreement("hand-written brute force", brute->velocities(), reference_name,
                       v_reference, n, rc);
+  require_agreement("hand-written each-pair-once",
+                    cell_pairs ? cell_pairs->velocities() : brute_pairs->velocities(),
+                    reference_name, v_reference, n, rc);
 
   // The kernels take turns, so that a slow spell of the (shared) machine hits
   // them alike; each timed batch follows an untimed one of the same kernel,
@@ -378,10 +472,11 @@ Row measure(std::size_t n, double rc) {
     seconds_per_update(update, batch);
     return seconds_per_update(update, batch);
   };
-  std::vector<double> partc_times, hand_times, brute_times;
+  std::vector<double> partc_times, hand_times, pairs_times, brute_times;
   for (int r = 0; r < repetitions; ++r) {
     partc_times.push_back(time_batch([&] { partc_model.step(); }));
     if (cells) hand_times.push_back(time_batch([&] { cells->update_velocities(); }));
+    pairs_times.push_back(time_batch(update_pairs));
     if (brute) brute_times.push_back(time_batch([&] { brute->update_velocities(); }));
   }
 
@@ -390,6 +485,7 @@ Row measure(std::size_t n, double rc) {
   row.te_partc = bench::median(partc_times);
   row.te_brute = brute ? bench::median(brute_times) : -1.0;
   row.te_hand = cells ? bench::median(hand_times) : row.te_brute;
+  row.te_pairs = bench::median(pairs_times);
   row.hand_is_brute_force = !cells;
   return row;
 }
@@ -405,8 +501,9 @@ double expected_work(std::size_t n, double rc) {
 
 void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
   std::printf("\n%s\n", cutoff.description);
-  std::printf("%9s %10s %11s %11s %11s %11s %10s %11s\n", "N", "neighbours", "Te_partc/s",
-              "Te_hand/s", "N/Te_partc", "N/Te_hand", "partc/hand", "Te_brute/s");
+  std::printf("%9s %10s %11s %11s %11s %11s %10s %11s %11s %11s\n", "N", "neighbours",
+              "Te_partc/s", "Te_hand/s", "N/Te_partc", "N/Te_hand", "partc/hand", "Te_pairs/s",
+              "partc/pairs", "Te_brute/s");
   bool hand_fell_back = false;
   double seconds_per_work = 0.0;  // of the last size measured
   for (const std::size_t n : sizes) {
@@ -425,13 +522,14 @@ void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
     hand_fell_back |= row.hand_is_brute_force;
     char brute[16] = "-";
     if (row.te_brute >= 0) std::snprintf(brute, sizeof brute, "%.3e", row.te_brute);
-    std::printf("%9zu %10.1f %11.3e %10.3e%s %11.3e %11.3e %10.2f %11s\n", n, row.neighbours,
-                row.te_partc, row.te_hand, row.hand_is_brute_force ? "*" : " ",
+    std::printf("%9zu %10.1f %11.3e %10.3e%s %11.3e %11.3e %10.2f %11.3e %11.2f %11s\n", n,
+                row.neighbours, row.te_partc, row.te_hand, row.hand_is_brute_force ? "*" : " ",
                 static_cast<double>(n) / row.te_partc, static_cast<double>(n) / row.te_hand,
-                row.te_partc / row.te_hand, brute);
+                row.te_partc / row.te_hand, row.te_pairs, row.te_partc / row.te_pairs, brute);
   }
   if (hand_fell_back)
-    std::printf("  * rc > 1/3: too few cells for the 3x3 stencil; Te_hand is the brute-force kernel\n");
+    std::printf("  * rc > 1/3: too few cells for the 3x3 stencil; Te_hand is the brute-force kernel\n"
+                "    (and Te_pairs brute force taking each pair once)\n");
 }
 
 }  // namespace
@@ -443,7 +541,9 @@ int main() {
   std::printf("md velocity update (Aboria paper): Te = mean time of one update in a batch of\n"
               "floor(1000/N)+1 (each after an untimed batch), median of %d batches; positions\n"
               "static, search built before. partc searches by brute force when a cell list would\n"
-              "save a query fewer than %g pair tests.\n"
+              "save a query fewer than %g pair tests. The force is odd in dx, so partc takes each\n"
+              "pair once (Newton's third law); Te_hand is the paper's per-particle kernel, Te_pairs\n"
+              "the same hand-written cell list taking each pair once too.\n"
               "Compiler: %s\n",
               repetitions, partc::NeighbourSearch<2>::default_margin, __VERSION__);
   run({"rc = sqrt(3/N): about 3*pi neighbours per particle, N/Te should be flat",
