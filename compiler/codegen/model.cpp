@@ -855,11 +855,19 @@ class ModelEmitter {
                            cpp_type(acc.type), expression(acc.body, names));
         break;
     }
-    // No condition, or one always true (sum(j, true, ...)): no test.
+    if (always_true(acc)) return step;
+    return "if (" + expression(acc.condition, names) + ") " + step;
+  }
+
+  // No condition, or one always true (sum(j, true, ...)): no test.
+  bool always_true(const Accumulate& acc) const {
     const std::optional<double> constant =
         acc.condition ? evaluate_constant(acc.condition, m_) : std::optional<double>(1.0);
-    if (constant && *constant != 0) return step;
-    return "if (" + expression(acc.condition, names) + ") " + step;
+    return constant && *constant != 0;
+  }
+
+  std::string accumulator_type(const Accumulate& acc) const {
+    return acc.reduction == Reduction::Count ? "std::int64_t" : cpp_type(acc.type);
   }
 
   // The loop of one particle i over its partners; with pairs_once (the name of
@@ -869,8 +877,7 @@ class ModelEmitter {
     UsesDx dx;
     bool reads_j = false;
     for (const Accumulate* acc : l.members) {
-      linef("{} {} = {};", acc->reduction == Reduction::Count ? "std::int64_t" : cpp_type(acc->type),
-            names.accumulators.at(acc->id), identity(*acc));
+      linef("{} {} = {};", accumulator_type(*acc), names.accumulators.at(acc->id), identity(*acc));
       dx.visit(acc->condition);
       dx.visit(acc->body);
       ReadsLabel reads(acc->label);
@@ -929,33 +936,44 @@ class ModelEmitter {
     }
     ExpressionNames inner = names;
     inner.dx_norm = dx.norm ? "dx_norm" : "";
-    const std::string term = locals.fresh("term");
+    // i's terms go to locals, stored once per group of i's pairs; j's straight to j.
+    std::map<int, std::string> of_i;
+    for (const Accumulate* acc : l.members)
+      of_i[acc->id] = locals.fresh(std::string(reduction_name(acc->reduction)) + "_" + i);
+    const std::string term = locals.fresh("term"), pairs = locals.fresh("pairs_of_" + i);
     line("// Each pair once (Newton's third law): i and j get the same term, or opposite ones.");
-    linef("{}([&](std::size_t {}, std::size_t {}, const Vec&{}) {{", walk, i, j, dx.dx ? " dx" : "");
+    linef("{}([&](std::size_t {}, const auto& {}) {{", walk, i, pairs);
+    for (const Accumulate* acc : l.members)
+      linef("{} {} = {};", accumulator_type(*acc), of_i.at(acc->id), identity(*acc));
+    linef("{}([&](std::size_t {}, const Vec&{}) {{", pairs, j, dx.dx ? " dx" : "");
     if (dx.norm) line("const double dx_norm = partc::norm(dx);");
     for (const Accumulate* acc : l.members) {
       const std::string& sums = pair_sums_.at(acc->id).first;
-      if (acc->condition) linef("if ({}) {{", expression(acc->condition, inner));
+      const bool test = !always_true(*acc);
+      if (test) linef("if ({}) {{", expression(acc->condition, inner));
       if (acc->reduction == Reduction::Count) {
-        linef("++{}[{}];", sums, i);
+        linef("++{};", of_i.at(acc->id));
         linef("if ({1} != {2}) ++{0}[{2}];", sums, i, j);
       } else {
         linef("const {} {} = {};", cpp_type(acc->type), term, expression(acc->body, inner));
-        linef("{}[{}] += {};", sums, i, term);
+        linef("{} += {};", of_i.at(acc->id), term);
         linef("if ({2} != {1}) {0}[{2}] {3}= {4};", sums, i, j,
               facts_.symmetry.at(acc->id).sign > 0 ? "+" : "-", term);
       }
-      if (acc->condition) line("}");
+      if (test) line("}");
     }
     line("});");
+    for (const Accumulate* acc : l.members)
+      linef("{}[{}] += {};", pair_sums_.at(acc->id).first, i, of_i.at(acc->id));
+    line("});");
   }
+
 
   std::string pair_sums_member(const Accumulate& acc) {
     auto it = pair_sums_.find(acc.id);
     if (it != pair_sums_.end()) return it->second.first;
     const std::string name = members_.fresh(std::string(reduction_name(acc.reduction)) + "_pairs_");
-    const std::string element = acc.reduction == Reduction::Count ? "std::int64_t" : cpp_type(acc.type);
-    pair_sums_[acc.id] = {name, element};
+    pair_sums_[acc.id] = {name, accumulator_type(acc)};
     return name;
   }
 

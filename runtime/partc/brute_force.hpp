@@ -77,13 +77,14 @@ class BruteForce {
     for_each_near_wrapped(points_[k], 0, f);
   }
 
-  // Each pair once: f(i, j, dx) for every i and every j >= i that
-  // for_each_near(i) reports, with the same dx, i ascending, then j, then
-  // image. So f(i, i, 0) once per point, and i's own images if any.
+  // Each pair once (the pair walk of slab_schedule.hpp): f(i, pairs) for each
+  // point i ascending, pairs(g) calling g(j, dx) for every j >= i that
+  // for_each_near(i) reports, with the same dx, j ascending, then image: so
+  // (i, 0) once, and i's own images if any.
   template <class F>
   void for_each_pair(F&& f) const {
     for (std::size_t i = 0; i < points_.size(); ++i)
-      for_each_near_wrapped(points_[i], i, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
+      f(i, [&](auto&& g) { for_each_near_wrapped(points_[i], i, g); });
   }
 
   // f(j, point) for every point with lo <= point <= hi componentwise (point as

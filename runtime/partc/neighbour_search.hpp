@@ -152,11 +152,12 @@ class NeighbourSearch {
     });
   }
 
-  // Each pair once: f(i, i, 0) and f(i, j, dx) for every j > i that
+  // Each pair once (the pair walk of slab_schedule.hpp): f(i, pairs), pairs(g)
+  // calling g(j, dx) for i itself (dx = 0) and every j > i that
   // for_each_near(i) reports, with the same dx (over half a periodic length,
   // every image, i's own included). A sum whose pair term is the same or its
   // negative seen from either particle (Newton's third law) gives it to both
-  // and evaluates half as many terms. No call for a NaN point, which no query
+  // and evaluates half as many terms. Nothing for a NaN point, which no query
   // reports. On the cell-list path in parallel slabs when the build allowed it
   // (OrderedCellList::for_each_pair), with results independent of the thread
   // count; else serially, i ascending.
@@ -164,11 +165,12 @@ class NeighbourSearch {
   void for_each_pair(F&& f) const {
     if (kind_ == Kind::cell_list) return cell_list_.for_each_pair(f);
     if (kind_ == Kind::brute_force) return brute_force_.for_each_pair(f);
-    for (std::size_t i = 0; i < size_; ++i) {
-      if (!is_finite(kd_tree_.point(i))) continue;
-      f(i, i, Vec<D>::zero());
-      for_each_near_after(i, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
-    }
+    for (std::size_t i = 0; i < size_; ++i)
+      if (is_finite(kd_tree_.point(i)))
+        f(i, [&](auto&& g) {
+          g(i, Vec<D>::zero());
+          for_each_near_after(i, g);
+        });
   }
 
   // Whether such sums should take for_each_pair over per-particle queries:

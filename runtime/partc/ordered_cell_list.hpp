@@ -91,25 +91,26 @@ class OrderedCellList {
     for_each_near_between(k, k + 1, points_.size(), f);
   }
 
-  // Each pair once: f(i, i, 0) for every point but NaN ones and f(i, j, dx) for
-  // every j > i that for_each_near(i) reports, with the same dx, in the slabs
-  // of pair_slabs() (slab_schedule.hpp): in parallel when build found that
-  // every pair obeys the slab rule, else serially, i ascending.
+  // Each pair once (the pair walk of slab_schedule.hpp): f(i, pairs), pairs(g)
+  // calling g(i, 0) (not for a NaN point) and g(j, dx) for every j > i that
+  // for_each_near(i) reports, with the same dx; in the slabs of pair_slabs(),
+  // in parallel when build found that every pair obeys the slab rule, else
+  // serially, i ascending.
   template <class F>
   void for_each_pair(F&& f) const {
     const std::size_t n = points_.size(), last = pair_slabs_.count() - 1;
     // Slab 0's pairs from here on cross the periodic edge: they run with the last slab.
     const std::size_t edge = last > 0 ? pair_slabs_.start(last) : n;
     pair_slabs_.for_each_slab([&](std::size_t a) {
-      for (std::size_t i = pair_slabs_.start(a); i < pair_slabs_.start(a + 1); ++i) {
-        if (!is_finite(points_[i])) continue;
-        f(i, i, Vec<D>::zero());
-        for_each_near_between(i, i + 1, a == 0 ? edge : n,
-                              [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
-      }
+      for (std::size_t i = pair_slabs_.start(a); i < pair_slabs_.start(a + 1); ++i)
+        if (is_finite(points_[i]))
+          f(i, [&](auto&& g) {
+            g(i, Vec<D>::zero());
+            for_each_near_between(i, i + 1, a == 0 ? edge : n, g);
+          });
       if (a == last && a > 0)
         for (std::size_t i = pair_slabs_.start(0); i < pair_slabs_.start(1); ++i)
-          for_each_near_between(i, edge, n, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
+          f(i, [&](auto&& g) { for_each_near_between(i, edge, n, g); });
     });
   }
   const SlabSchedule& pair_slabs() const { return pair_slabs_; }

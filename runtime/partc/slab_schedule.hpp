@@ -2,6 +2,13 @@
 // which a structure walks each pair of points once (Newton's third law: a pair
 // term given to both points, one of them += term, the other +-= term).
 //
+// The pair walk, for_each_pair(f), of every structure that has one: pairs are
+// grouped by their lower point i, f(i, pairs) is called, and pairs(g) calls
+// g(j, dx) for the group's pairs (i, j), j >= i - (i, 0) itself included -
+// so that the caller can sum i's terms in a local and store them once, while
+// j's go straight to j's total. f may be called twice for one i, the second
+// time (without (i, 0)) for its pairs across a periodic edge.
+//
 // The points are sorted by cell, so the planes of cells along the first
 // dimension are blocks of indices. Planes are grouped into an even number
 // S >= 4 of slabs. A pair (i < j) must join a slab to itself, to the next

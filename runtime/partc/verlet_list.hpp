@@ -24,10 +24,10 @@
 // or a change of the particle count. The skin is fixed at construction.
 //
 // Half lists (VerletPairs::half, for sums whose pair term is the same or its
-// negative seen from either particle: Newton's third law): for_each_pair calls
-// f(i, j, dx) once per pair within radius, from the lower index i, plus
-// f(i, i, 0) once per particle (the full lists include j == i too), so a
-// caller gives the term to both particles and evaluates half as many. The
+// negative seen from either particle: Newton's third law): for_each_pair walks
+// each pair within radius once, from the lower index i, plus (i, i, 0) once
+// per particle (the full lists include j == i too), so a caller gives the
+// term to both particles and evaluates half as many. The
 // calls run in parallel yet deterministically, in the slabs of the search's
 // cell list (slab_schedule.hpp); every pair is checked against the slab rule
 // at the build; fewer than 4 planes, a search other than the cell list
@@ -121,22 +121,21 @@ class VerletList {
     filter(i, start_[i], start_[i + 1], f);
   }
 
-  // Half lists: f(i, i, 0) for every particle and f(i, j, dx) for every pair
-  // i < j within the radius, in the deterministic parallel schedule above.
+  // Half lists, the pair walk of slab_schedule.hpp: f(i, pairs) for every
+  // particle, pairs(g) calling g(i, 0) and g(j, dx) for every j > i within the
+  // radius, in the deterministic parallel schedule above.
   template <class F>
   void for_each_pair(F&& f) const {
     assert(pairs_ == VerletPairs::half);
-    const auto pairs_of = [&](std::size_t i, std::size_t first, std::size_t stop) {
-      filter(i, first, stop, [&](std::size_t j, const Vec<D>& dx) { f(i, j, dx); });
-    };
     slabs_.for_each_slab([&](std::size_t a) {
-      for (std::size_t i = slabs_.start(a); i < slabs_.start(a + 1); ++i) {
-        f(i, i, Vec<D>::zero());
-        pairs_of(i, start_[i], across_[i]);
-      }
+      for (std::size_t i = slabs_.start(a); i < slabs_.start(a + 1); ++i)
+        f(i, [&](auto&& g) {
+          g(i, Vec<D>::zero());
+          filter(i, start_[i], across_[i], g);
+        });
       if (a + 1 == slabs_.count())
         for (std::size_t i = slabs_.start(0); i < slabs_.start(1); ++i)
-          pairs_of(i, across_[i], start_[i + 1]);
+          f(i, [&](auto&& g) { filter(i, across_[i], start_[i + 1], g); });
     });
   }
 

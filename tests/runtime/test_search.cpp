@@ -74,7 +74,7 @@ void check_member_queries(const std::string& name, const Case<D>& c,
   CHECK(differing == 0);
 }
 
-// The pair walk, for_each_pair(f(i, j, dx)), against the member queries (checked
+// The pair walk, for_each_pair(f(i, pairs of i)), against the member queries (checked
 // against the reference above): exactly the (i, j, dx) with j >= i they report,
 // each once with the same dx bit for bit. With a slab schedule (the ordered
 // cell list), every pair must obey its rule: what makes the parallel walk safe.
@@ -90,10 +90,12 @@ void check_pair_walk(const std::string& name, std::size_t n, const Search& searc
   std::vector<Entry> walked, queried;
   std::size_t breaking_the_slab_rule = 0;
   std::mutex calls;  // the slabs' walks may run in parallel
-  search.for_each_pair([&](std::size_t i, std::size_t j, const Vec<D>& dx) {
-    const std::lock_guard<std::mutex> lock(calls);
-    if (slabs && !slabs->allows(slabs->slab_of(i), slabs->slab_of(j))) ++breaking_the_slab_rule;
-    walked.push_back(entry(i, j, dx));
+  search.for_each_pair([&](std::size_t i, const auto& pairs) {
+    pairs([&](std::size_t j, const Vec<D>& dx) {
+      const std::lock_guard<std::mutex> lock(calls);
+      if (slabs && !slabs->allows(slabs->slab_of(i), slabs->slab_of(j))) ++breaking_the_slab_rule;
+      walked.push_back(entry(i, j, dx));
+    });
   });
   for (std::size_t i = 0; i < n; ++i)
     search.for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
