@@ -136,25 +136,20 @@ class HandCellList {
 
   void update_velocities() {
     const double rc2 = rc2_, c = c_;
-    for (std::size_t cy = 0; cy < n_side_; ++cy)
-      for (std::size_t cx = 0; cx < n_side_; ++cx) {
-        const std::array<NeighbourCell, 9> around = neighbour_cells(cx, cy);
-        const std::size_t cell = cy * n_side_ + cx;
-        for (std::size_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
-          double fx = 0.0, fy = 0.0;
-          for (const NeighbourCell& nc : around) {
-            // Shifting particle i once per cell, not every neighbour.
-            const double xi = x_[i] - nc.shift_x, yi = y_[i] - nc.shift_y;
-            for (std::size_t j = nc.first; j < nc.last; ++j) {
-              const double dx = x_[j] - xi, dy = y_[j] - yi;
-              const double r2 = dx * dx + dy * dy;
-              add_pair_force(dx, dy, r2, rc2, fx, fy);
-            }
-          }
-          vx_[i] += c * fx;
-          vy_[i] += c * fy;
+    for_each_particle([&](std::size_t i, const Stencil& around) {
+      double fx = 0.0, fy = 0.0;
+      for (const NeighbourCell& nc : around) {
+        // Shifting particle i once per cell, not every neighbour.
+        const double xi = x_[i] - nc.shift_x, yi = y_[i] - nc.shift_y;
+        for (std::size_t j = nc.first; j < nc.last; ++j) {
+          const double dx = x_[j] - xi, dy = y_[j] - yi;
+          const double r2 = dx * dx + dy * dy;
+          add_pair_force(dx, dy, r2, rc2, fx, fy);
         }
       }
+      vx_[i] += c * fx;
+      vy_[i] += c * fy;
+    });
   }
 
   // The same, each pair once (Newton's third law): a cell meets its own pairs
@@ -164,24 +159,19 @@ class HandCellList {
     const double rc2 = rc2_, c = c_;
     fx_.assign(x_.size(), 0.0);
     fy_.assign(x_.size(), 0.0);
-    for (std::size_t cy = 0; cy < n_side_; ++cy)
-      for (std::size_t cx = 0; cx < n_side_; ++cx) {
-        const std::array<NeighbourCell, 9> around = neighbour_cells(cx, cy);
-        const std::size_t cell = cy * n_side_ + cx;
-        for (std::size_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
-          double fx = 0.0, fy = 0.0;
-          for (std::size_t k = own_cell; k < around.size(); ++k) {
-            const NeighbourCell& nc = around[k];
-            const double xi = x_[i] - nc.shift_x, yi = y_[i] - nc.shift_y;
-            for (std::size_t j = k == own_cell ? i + 1 : nc.first; j < nc.last; ++j) {
-              const double dx = x_[j] - xi, dy = y_[j] - yi;
-              add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy, fx_[j], fy_[j]);
-            }
-          }
-          fx_[i] += fx;
-          fy_[i] += fy;
+    for_each_particle([&](std::size_t i, const Stencil& around) {
+      double fx = 0.0, fy = 0.0;
+      for (std::size_t k = own_cell; k < around.size(); ++k) {
+        const NeighbourCell& nc = around[k];
+        const double xi = x_[i] - nc.shift_x, yi = y_[i] - nc.shift_y;
+        for (std::size_t j = k == own_cell ? i + 1 : nc.first; j < nc.last; ++j) {
+          const double dx = x_[j] - xi, dy = y_[j] - yi;
+          add_pair_force(dx, dy, dx * dx + dy * dy, rc2, fx, fy, fx_[j], fy_[j]);
         }
       }
+      fx_[i] += fx;
+      fy_[i] += fy;
+    });
     for (std::size_t i = 0; i < x_.size(); ++i) {
       vx_[i] += c * fx_[i];
       vy_[i] += c * fy_[i];
@@ -191,17 +181,14 @@ class HandCellList {
   // Pairs (i, j) with 0 < |dx| < rc, divided by N.
   double mean_neighbours() const {
     std::size_t pairs = 0;
-    for (std::size_t cy = 0; cy < n_side_; ++cy)
-      for (std::size_t cx = 0; cx < n_side_; ++cx) {
-        const std::size_t cell = cy * n_side_ + cx;
-        for (const NeighbourCell& nc : neighbour_cells(cx, cy))
-          for (std::size_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i)
-            for (std::size_t j = nc.first; j < nc.last; ++j) {
-              const double dx = x_[j] - (x_[i] - nc.shift_x), dy = y_[j] - (y_[i] - nc.shift_y);
-              const double r2 = dx * dx + dy * dy;
-              pairs += r2 < rc2_ && r2 > 0.0;
-            }
-      }
+    for_each_particle([&](std::size_t i, const Stencil& around) {
+      for (const NeighbourCell& nc : around)
+        for (std::size_t j = nc.first; j < nc.last; ++j) {
+          const double dx = x_[j] - (x_[i] - nc.shift_x), dy = y_[j] - (y_[i] - nc.shift_y);
+          const double r2 = dx * dx + dy * dy;
+          pairs += r2 < rc2_ && r2 > 0.0;
+        }
+    });
     return static_cast<double>(pairs) / static_cast<double>(x_.size());
   }
 
@@ -227,15 +214,28 @@ class HandCellList {
   }
 
   // neighbour_cells' stencil, rows y - 1, y, y + 1: the cell itself is the 5th.
+  using Stencil = std::array<NeighbourCell, 9>;
   static constexpr std::size_t own_cell = 4;
-  std::array<NeighbourCell, 9> neighbour_cells(std::size_t cx, std::size_t cy) const {
+
+  // f(i, stencil of i's cell) for every particle i, cell by cell.
+  template <class F>
+  void for_each_particle(F&& f) const {
+    for (std::size_t cy = 0; cy < n_side_; ++cy)
+      for (std::size_t cx = 0; cx < n_side_; ++cx) {
+        const Stencil around = neighbour_cells(cx, cy);
+        const std::size_t cell = cy * n_side_ + cx;
+        for (std::size_t i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) f(i, around);
+      }
+  }
+
+  Stencil neighbour_cells(std::size_t cx, std::size_t cy) const {
     // Cell c + offset along one axis, wrapped, and the shift its particles need.
     const auto wrapped = [n = n_side_](std::size_t c, int offset) -> std::pair<std::size_t, double> {
       if (offset < 0 && c == 0) return {n - 1, -box};
       if (offset > 0 && c == n - 1) return {0, box};
       return {c + offset, 0.0};
     };
-    std::array<NeighbourCell, 9> around;
+    Stencil around;
     std::size_t k = 0;
     for (int oy = -1; oy <= 1; ++oy)
       for (int ox = -1; ox <= 1; ++ox) {
