@@ -187,8 +187,18 @@ class OrderedCellList {
     for (std::size_t k = 0; k < n; ++k) cell_of_sorted_[k] = cell_of_point_[order_[k]];
     runs_.clear();
     run_start_.assign(grid_.cell_count() + 1, 0);
+    runs_within_next_plane_ = false;
     if (!grid_.shifts_suffice()) return;
+    // Cells are numbered plane by plane (planes of cells along dimension 0):
+    // cell c lies in plane a, which ends at cell next_plane, the one after at
+    // after_next.
+    const std::size_t per_plane = grid_.cell_count() / grid_.cells_along(0);
+    const std::size_t last_plane = grid_.cell_count() - per_plane;
+    std::size_t a = 0, next_plane = per_plane;
+    runs_within_next_plane_ = true;
     for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      if (c == next_plane) ++a, next_plane += per_plane;
+      const std::size_t after_next = next_plane + per_plane;
       run_start_[c] = runs_.size();
       // A point with a NaN or Inf coordinate has no neighbours: it does not widen the box.
       bool any = false;
@@ -204,36 +214,29 @@ class OrderedCellList {
       if (!any) continue;
       grid_.for_each_run_of_box(
           lo, hi, [&](std::size_t first, std::size_t last, const Vec<D>& shift, auto) {
-            if (start_[first] != start_[last + 1])
-              runs_.push_back({start_[first], start_[last + 1], shift});
+            if (start_[first] == start_[last + 1]) return;
+            runs_.push_back({start_[first], start_[last + 1], shift});
+            // Beyond the next plane, only plane 0 meeting the last plane (across
+            // the periodic edge) keeps the slab rule of for_each_pair.
+            if (last >= after_next && !(a == 0 && first >= last_plane))
+              runs_within_next_plane_ = false;
           });
     }
     run_start_.back() = runs_.size();
   }
 
-  // The slabs of for_each_pair from the planes of cells (needing cells at
-  // least the radius wide: not in exact mode), if every run of every occupied
-  // cell obeys the slab rule for the pairs j > i it holds; else one slab.
+  // The slabs of for_each_pair from the planes of cells, when every run of
+  // every occupied cell stays within its own plane and the next (or, from
+  // plane 0, the last plane across the periodic edge): then the pairs j > i of
+  // a point of plane a join it to planes a and a + 1, or plane 0 to the last
+  // one, as the slab rule asks. Cells are at least the radius wide, so this
+  // fails only by rounding at a plane's edge; then one slab.
   void make_pair_slabs() {
     const std::size_t n = points_.size();
-    pair_slabs_ = SlabSchedule(n);
-    if (!grid_.shifts_suffice()) return;
-    const SlabSchedule slabs = SlabSchedule::of_planes(plane_starts(), n);
-    if (slabs.count() == 1) return;
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
-      if (start_[c] == start_[c + 1]) continue;
-      const std::size_t a = slabs.slab_of(start_[c]);
-      for (std::size_t r = run_start_[c]; r != run_start_[c + 1]; ++r) {
-        const std::size_t first = std::max(runs_[r].first, start_[c] + 1);
-        if (first >= runs_[r].stop) continue;
-        // The slabs of points first .. stop-1 form an interval from lo (>= a) to hi.
-        const std::size_t lo = slabs.slab_of(first), hi = slabs.slab_of(runs_[r].stop - 1);
-        const bool near = hi <= a + 1, across = a == 0 && lo + 1 == slabs.count();
-        if (!near && !across) return;
-      }
-    }
-    pair_slabs_ = slabs;
+    pair_slabs_ = runs_within_next_plane_ ? SlabSchedule::of_planes(plane_starts(), n)
+                                          : SlabSchedule(n);
   }
+
 
   CellGrid<D> grid_;
   std::vector<Vec<D>> points_;               // wrapped, sorted by cell
@@ -243,6 +246,7 @@ class OrderedCellList {
   std::vector<std::size_t> cell_of_sorted_;  // the cell of sorted point k
   std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
   std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
+  bool runs_within_next_plane_ = false;      // build_runs_of_cells' check for the slab rule
   SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
 };
 
