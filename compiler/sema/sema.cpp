@@ -96,8 +96,10 @@ class Sema {
   explicit Sema(const SourceFile& file) : file_(file) {}
 
   ir::Model run(const ast::Program& program) {
-    collect_header(program);
+    const ast::DomainDecl& domain = collect_header(program);
     for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
+    // After the consts, which its bounds may name.
+    guarded([&] { check_domain(domain); });
     if (model_.sets.empty() && errors_.empty())
       errors_.push_back({Location{}, "a model needs at least one particle set",
                          "declare one with: particles P(N) { v: vec = 0 }"});
@@ -122,7 +124,8 @@ class Sema {
 
   // ---- model, dim, domain: needed before anything else has a type -------
 
-  void collect_header(const ast::Program& program) {
+  // Returns the domain declaration, checked once the consts are declared.
+  const ast::DomainDecl& collect_header(const ast::Program& program) {
     const ast::ModelDecl* model = nullptr;
     const ast::DimDecl* dim = nullptr;
     const ast::DomainDecl* domain = nullptr;
@@ -150,7 +153,7 @@ class Sema {
     model_.dim = static_cast<int>(dim->value.value);
     if (dim->value.value < 1 || dim->value.value > 4)
       throw CompileError(Diagnostic{dim->value.loc, "dim must be 1, 2, 3 or 4"});
-    guarded([&] { check_domain(*domain); });
+    return *domain;
   }
 
   void check_domain(const ast::DomainDecl& decl) {
