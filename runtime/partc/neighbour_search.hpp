@@ -199,7 +199,11 @@ class NeighbourSearch {
   std::string describe() const {
     if (build_count_ == 0) return "not built yet";
     switch (kind_) {
-      case Kind::cell_list: return "cell list, " + std::to_string(cell_count()) + " cells";
+      case Kind::cell_list: {
+        const std::size_t slabs = cell_list_.pair_slabs().count();
+        return "cell list, " + std::to_string(cell_count()) + " cells" +
+               (slabs > 1 ? ", pair walks in " + std::to_string(slabs) + " slabs" : "");
+      }
       case Kind::kd_tree: return "k-d tree";
       case Kind::brute_force: break;
     }

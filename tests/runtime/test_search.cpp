@@ -293,9 +293,12 @@ TEST_CASE("the facade picks brute force when queries would examine nearly every 
   search.build(box, 0.2, set);  // 10 x 10 cells: a query examines 9% of the points
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
   CHECK(search.cell_count() == 10 * 10);
+  CHECK(search.describe() == "cell list, 100 cells, pair walks in 10 slabs");
+  CHECK(search.pairs_once());  // the cell list walks its pairs in parallel
   search.build(box, 0.66, set);  // 3 x 3 cells: a query examines 99%
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
   CHECK(search.cell_count() == 0);
+  CHECK(search.pairs_once());  // 100 points: few enough for one thread
   search.build(box, 0.7, set);  // 2 cells per periodic dimension: shifts do not suffice
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
 
@@ -322,6 +325,12 @@ TEST_CASE("the facade picks brute force when queries would examine nearly every 
   partc::NeighbourSearch<2> reluctant(101.0);  // more than there are points to save
   reluctant.build(box, 0.1, set);
   CHECK(reluctant.kind() == partc::NeighbourSearch<2>::Kind::brute_force);
+
+  // Brute force over a large set: per-particle queries, which run in parallel.
+  partc::ParticleSet<2> many;
+  for (int i = 0; i < 1000; ++i) many.push_back(Vec<2>{{0.002 * i, -0.0013 * i}});
+  brute.build(box, 0.1, many);
+  CHECK_FALSE(brute.pairs_once());
 }
 
 TEST_CASE("the facade picks a k-d tree for tightly clustered points", "[search]") {
