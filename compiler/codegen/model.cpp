@@ -968,7 +968,6 @@ class ModelEmitter {
     line("});");
   }
 
-
   std::string pair_sums_member(const Accumulate& acc) {
     auto it = pair_sums_.find(acc.id);
     if (it != pair_sums_.end()) return it->second.first;

@@ -122,7 +122,7 @@ class Sema {
     }
   }
 
-  // ---- model, dim, domain: needed before anything else has a type -------
+  // ---- model and dim: needed before anything else has a type; domain ----
 
   // Returns the domain declaration, checked once the consts are declared.
   const ast::DomainDecl& collect_header(const ast::Program& program) {

@@ -108,7 +108,7 @@ class BruteForce {
   const Vec<D>& point(std::size_t j) const { return points_[j]; }
 
  private:
-  // The query loop over points first.., qw wrapped into the periodic box.
+  // The query loop over points first, first + 1, ..., qw wrapped into the periodic box.
   template <class F>
   void for_each_near_wrapped(const Vec<D>& qw, std::size_t first, F&& f) const {
     if (all_images_) {

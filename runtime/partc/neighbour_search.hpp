@@ -212,7 +212,6 @@ class NeighbourSearch {
   std::size_t cell_count() const { return kind_ == Kind::cell_list ? cell_list_.cell_count() : 0; }
 
  private:
-
   double margin_ = default_margin;
   std::optional<Kind> forced_;
   Kind kind_ = Kind::brute_force;

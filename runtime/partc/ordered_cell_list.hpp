@@ -237,7 +237,6 @@ class OrderedCellList {
                                           : SlabSchedule(n);
   }
 
-
   CellGrid<D> grid_;
   std::vector<Vec<D>> points_;               // wrapped, sorted by cell
   std::vector<std::size_t> start_;           // cell c holds points start_[c] .. start_[c+1]-1
