@@ -1,0 +1,214 @@
+// ModelEmitter, which writes the C++ class of a model: the class around the
+// kernels in codegen/model.cpp, the kernels (one per statement) in
+// codegen/kernel.cpp. Also the IR visitors both use. Internal to codegen/.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "codegen/codegen.hpp"
+#include "codegen/expression.hpp"
+#include "codegen/names.hpp"
+#include "ir/visitor.hpp"
+
+namespace partc::codegen {
+
+using namespace ir;
+
+// What one statement's kernel touches.
+class StatementUses : public Visitor {
+ public:
+  std::set<std::pair<int, int>> arrays;  // (set, var) read
+  std::vector<int> labels;               // through these labels, in order of reading
+  std::vector<const Accumulate*> accumulations;
+  std::set<int> params, consts;
+  bool random = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const VarRef& n) override {
+    arrays.insert({n.set, n.var});
+    labels.push_back(n.label);
+  }
+  void visit(const ParamRef& n) override { params.insert(n.param); }
+  void visit(const ConstRef& n) override { consts.insert(n.constant); }
+  void visit(const Random&) override { random = true; }
+  void visit(const Accumulate& n) override {
+    accumulations.push_back(&n);
+    Visitor::visit(n);
+  }
+};
+
+// Whether an expression reads any variable through one label (j).
+class ReadsLabel : public Visitor {
+ public:
+  explicit ReadsLabel(int label) : label_(label) {}
+  bool found = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const VarRef& n) override { found |= n.label == label_; }
+
+ private:
+  int label_;
+};
+
+class UsesDx : public Visitor {
+ public:
+  bool dx = false, norm = false;
+
+ public:
+  using Visitor::visit;
+
+ protected:
+  void visit(const Dx&) override { dx = true; }
+  void visit(const Call& n) override {
+    if (n.fn == Function::Norm && as<Dx>(n.args[0])) norm = true;
+    Visitor::visit(n);
+  }
+};
+
+// The text on one line: each run of whitespace becomes one space.
+std::string one_line(std::string_view text);
+
+class ModelEmitter {
+ public:
+  ModelEmitter(const Model& model, const ModelFacts& facts, const SourceFile& file,
+               const CodegenOptions& options);
+  std::string run();
+
+ private:
+  // ---- output -----------------------------------------------------------
+
+  void comment(const std::string& text);
+  void line(const std::string& text);
+  template <class... Args>
+  void linef(fmt::format_string<Args...> f, Args&&... args) {
+    line(fmt::format(f, std::forward<Args>(args)...));
+  }
+
+  std::string source_line(Location loc) const;
+  std::string source_text(Location loc) const { return one_line(file_.slice(loc)); }
+
+  // ---- searches: one per set that neighbourhood sums run over, and per
+  // search structure the schedule forces on some of them -----------------
+
+  using SearchKey = std::pair<int, SearchChoice>;  // (set searched, structure)
+
+  void plan_searches();
+  const std::string& search_for(int set, const Statement& st) const;
+
+  // ---- header -----------------------------------------------------------
+
+  void header();
+
+  // ---- public types -----------------------------------------------------
+
+  std::string tag(int set, int var) const;
+  void public_types();
+
+  // ---- public API -------------------------------------------------------
+
+  void public_api();
+  void param_info();
+  void set_param();
+  void init();
+  void load();
+  static std::vector<std::string> set_comparisons(const std::vector<std::string>& names);
+  void step();
+  void for_each_set();
+  void search_report();
+
+  // ---- private helpers --------------------------------------------------
+
+  void helpers();
+  void user_function(int f);
+  ExpressionNames base_names() const;
+  void create_set(int s);
+  void initialise_particle(int s);
+  std::string array_access(int s, int var) const;
+  ExpressionNames initialiser_names(int s) const;
+  std::string expression(const Expr& e, const ExpressionNames& names) const;
+
+  // ---- kernels ----------------------------------------------------------
+
+  struct Kernel {
+    std::string name;
+    const Statement* st;
+    const AliasFact* alias;
+  };
+  void plan_kernels();
+  std::vector<std::string> kernel_names(StageKind kind);
+  void kernels();
+  void kernel(const Kernel& k);
+  void kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
+                        NameTable& locals);
+  std::string buffer_member(int s, int var);
+  void refresh_search(int s, const std::string& search, const std::vector<std::string>& radii,
+                      const std::string& local);
+  std::string radius_expression(const SearchFact& fact, const Statement& st,
+                                const ExpressionNames& names) const;
+
+  // Newton's third law: a statement whose every neighbour sum gives j the term
+  // i gets, or its negative (analysis/symmetry.cpp), can take each pair once:
+  // from half lists with Verlet lists (half_lists), else from the search's pair
+  // walk when NeighbourSearch::pairs_once says it pays (else per-particle queries).
+  bool half_lists(const Statement& st) const { return st.schedule.skin && newton_pairs(st); }
+  bool newton_pairs(const Statement& st) const;
+  void refresh_lists(const Statement& st, const std::vector<std::string>& radii,
+                     const std::string& local, const ExpressionNames& names);
+
+  // Accumulations of one statement over the same set, found the same way
+  // (the same search, or the same dense loop), share one pass: SPH's
+  // density and its normalisation cost one neighbour walk, not two.
+  struct Loop {
+    int set;
+    SearchFact::Kind kind;
+    bool once;  // the same for every i (uniform_sums.cpp): run before the particle loop
+    std::vector<const Accumulate*> members;
+  };
+  std::vector<Loop> fuse_loops(const std::vector<const Accumulate*>& accumulations,
+                               const Statement& st) const;
+  std::string identity(const Accumulate& acc) const;
+  std::string update(const Accumulate& acc, const ExpressionNames& names) const;
+  bool always_true(const Accumulate& acc) const;
+  std::string accumulator_type(const Accumulate& acc) const;
+  void loop(const Loop& l, const Statement& st, const ExpressionNames& names,
+            const std::string& pairs_once = "");
+  void pair_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
+                 NameTable& locals, const std::string& walk);
+  std::string pair_sums_member(const Accumulate& acc);
+  void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
+
+  // ---- state ------------------------------------------------------------
+
+  void state();
+
+  // The emitter's own state: what it reads, what it has written and named.
+  const Model& m_;
+  const ModelFacts& facts_;
+  const SourceFile& file_;
+  const CodegenOptions& options_;
+  std::string out_;
+  std::string cls_;
+  NameTable members_;
+  std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
+  std::map<SearchKey, std::string> searches_;
+  std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
+  std::vector<Kernel> kernels_;
+  std::vector<StageKind> kernel_stage_;
+  std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element
+  std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
+};
+
+}  // namespace partc::codegen
