@@ -532,6 +532,48 @@ void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
                 "    (and Te_pairs brute force taking each pair once)\n");
 }
 
+// Small N on static points lets the branch predictor learn a whole update's
+// pattern of hits and misses, which favours branchy loops (the hand-written
+// ones) over branch-free filtering (partc's cell list). Cycling one update at
+// a time over many independent position sets, as a simulation's moving
+// particles would, takes that away: Te per update, rc = sqrt(3/N).
+void run_unlearnt(const std::vector<std::size_t>& sizes) {
+  constexpr int sets = 64;
+  std::printf("\nSmall N, no learnt branch pattern: updates cycle over %d independent position sets\n"
+              "(rc = sqrt(3/N)); Te per update, median of %d rounds\n", sets, repetitions);
+  std::printf("%9s %11s %11s %11s %10s %11s\n", "N", "Te_partc/s", "Te_hand/s", "Te_pairs/s",
+              "partc/hand", "partc/pairs");
+  for (const std::size_t n : sizes) {
+    const double rc = std::sqrt(3.0 / static_cast<double>(n));
+    std::vector<MdVelocity> models(sets);
+    std::vector<HandCellList> hands, pairs;
+    for (int k = 0; k < sets; ++k) {
+      const Positions positions = uniform_positions(n, 2017 + static_cast<std::uint64_t>(k));
+      load_positions(models[k], positions, rc);
+      models[k].step();  // builds the search
+      hands.emplace_back(positions, rc, force_strength);
+      pairs.emplace_back(positions, rc, force_strength);
+    }
+    const int rounds = static_cast<int>(20000 / n) + 1;
+    const auto time = [&](auto&& update_set) {
+      std::vector<double> times;
+      for (int r = 0; r < repetitions; ++r)
+        times.push_back(seconds_per_update(
+                            [&] {
+                              for (int k = 0; k < sets; ++k) update_set(k);
+                            },
+                            rounds) /
+                        sets);
+      return bench::median(times);
+    };
+    const double te_partc = time([&](int k) { models[k].step(); });
+    const double te_hand = time([&](int k) { hands[k].update_velocities(); });
+    const double te_pairs = time([&](int k) { pairs[k].update_velocities_pairs(); });
+    std::printf("%9zu %11.3e %11.3e %11.3e %10.2f %11.2f\n", n, te_partc, te_hand, te_pairs,
+                te_partc / te_hand, te_partc / te_pairs);
+  }
+}
+
 }  // namespace
 
 int main() {
@@ -552,4 +594,5 @@ int main() {
   run({"rc = sqrt(3/500): neighbours grow with N",
        [](std::size_t) { return std::sqrt(3.0 / 500.0); }},
       sizes);
+  run_unlearnt({50, 100, 200, 500});
 }
