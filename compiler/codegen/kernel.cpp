@@ -28,8 +28,9 @@ void ModelEmitter::plan_kernels() {
       const Statement& st = stage.statements[k];
       const std::string stage_name = stage.kind == StageKind::Init ? "init" : "step";
       const std::string set_part = m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "";
-      kernels_.push_back({members_.fresh(stage_name + "_" + set_part + m_.sets[st.set].vars[st.var].name),
-                          &st, &facts_.aliasing[g][k]});
+      kernels_.push_back(
+          {members_.fresh(stage_name + "_" + set_part + m_.sets[st.set].vars[st.var].name), &st,
+           &facts_.aliasing[g][k]});
       kernel_stage_.push_back(stage.kind);
     }
   }
@@ -66,8 +67,8 @@ void ModelEmitter::kernel(const Kernel& k) {
     auto it = arrays.find(key);
     if (it != arrays.end()) return it->second;
     // Another set's arrays are named "<var>_<set>" (strength_O): never a tag name.
-    const std::string wanted = cpp_name(s == home ? m_.sets[s].vars[var].name
-                                                  : m_.sets[s].vars[var].name + "_" + m_.sets[s].name);
+    const std::string wanted = cpp_name(
+        s == home ? m_.sets[s].vars[var].name : m_.sets[s].vars[var].name + "_" + m_.sets[s].name);
     return arrays[key] = locals.fresh(wanted);
   };
   std::set<std::pair<int, int>> needed = uses.arrays;
@@ -155,7 +156,7 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (l.once) {
       loop(l, st, names);
     } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {
-      pair_pass(l, names, count, locals, lists_.at(&st) + "->for_each_pair");
+      pair_pass(l, names, count, locals, lists_.at(&st) + "->for_each_pair", k.name);
       for (const Accumulate* acc : l.members)
         names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
@@ -164,7 +165,7 @@ void ModelEmitter::kernel(const Kernel& k) {
       line("// Each pair once when the search walks pairs in parallel, or the set is small.");
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
       linef("if ({}) {{", pairs_once);
-      pair_pass(l, names, count, locals, search + ".for_each_pair");
+      pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
       line("}");
       per_particle.push_back(&l);
     } else {
@@ -191,7 +192,7 @@ void ModelEmitter::kernel(const Kernel& k) {
 // reload them after every call it cannot see into (exp in a pair loop;
 // the seed kernel at N = 20 timed alone: 4% faster).
 void ModelEmitter::kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
-                      NameTable& locals) {
+                                    NameTable& locals) {
   if (st.schedule.skin) uses.visit(st.schedule.skin);
   for (int p : uses.params) {
     const Param& param = m_.params[p];
@@ -218,10 +219,11 @@ std::string ModelEmitter::buffer_member(int s, int var) {
   return name;
 }
 
-void ModelEmitter::refresh_search(int s, const std::string& search, const std::vector<std::string>& radii,
-                    const std::string& local) {
+void ModelEmitter::refresh_search(int s, const std::string& search,
+                                  const std::vector<std::string>& radii, const std::string& local) {
   std::string radius = radii.front();
-  for (std::size_t k = 1; k < radii.size(); ++k) radius = "std::max(" + radius + ", " + radii[k] + ")";
+  for (std::size_t k = 1; k < radii.size(); ++k)
+    radius = "std::max(" + radius + ", " + radii[k] + ")";
   linef("const double {} = {};", local, radius);
   linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
   linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
@@ -234,7 +236,7 @@ void ModelEmitter::refresh_search(int s, const std::string& search, const std::v
 // each term's largest value over the particles it reads (max r + max r for
 // r[i] + r[j]), kept positive so coincident particles are still found.
 std::string ModelEmitter::radius_expression(const SearchFact& fact, const Statement& st,
-                              const ExpressionNames& names) const {
+                                            const ExpressionNames& names) const {
   if (fact.radius_terms.size() == 1 && is_uniform(fact.radius_terms.front()))
     return expression(fact.radius_terms.front(), names);
   std::vector<std::string> parts;
@@ -271,9 +273,10 @@ bool ModelEmitter::newton_pairs(const Statement& st) const {
 // Verlet lists: reused while no particle has moved half the skin since
 // they were built; a rebuild may reorder the set, like a search build.
 void ModelEmitter::refresh_lists(const Statement& st, const std::vector<std::string>& radii,
-                   const std::string& local, const ExpressionNames& names) {
+                                 const std::string& local, const ExpressionNames& names) {
   std::string radius = radii.front();
-  for (std::size_t k = 1; k < radii.size(); ++k) radius = "std::max(" + radius + ", " + radii[k] + ")";
+  for (std::size_t k = 1; k < radii.size(); ++k)
+    radius = "std::max(" + radius + ", " + radii[k] + ")";
   const std::string& lists = lists_.at(&st);
   const std::string skin = expression(st.schedule.skin, names);
   linef("const double {} = {};", local, radius);
@@ -283,8 +286,8 @@ void ModelEmitter::refresh_lists(const Statement& st, const std::vector<std::str
         set_member_[st.set], epoch_[st.set], m_.sets[st.set].name);
 }
 
-std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(const std::vector<const Accumulate*>& accumulations,
-                             const Statement& st) const {
+std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(
+    const std::vector<const Accumulate*>& accumulations, const Statement& st) const {
   std::vector<Loop> loops;
   for (const Accumulate* acc : accumulations) {
     const int set = st.labels[acc->label].set;
@@ -303,8 +306,7 @@ std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(const std::vector<const
 
 std::string ModelEmitter::identity(const Accumulate& acc) const {
   switch (acc.reduction) {
-    case Reduction::Sum:
-      return acc.type == Type::Vec ? "Vec::zero()" : emit_literal(acc.type, 0);
+    case Reduction::Sum: return acc.type == Type::Vec ? "Vec::zero()" : emit_literal(acc.type, 0);
     case Reduction::Count: return "0";
     case Reduction::Min:
       return acc.type == Type::Real ? "std::numeric_limits<double>::infinity()"
@@ -346,7 +348,7 @@ std::string ModelEmitter::accumulator_type(const Accumulate& acc) const {
 // The loop of one particle i over its partners; with pairs_once (the name of
 // the run-time choice) the totals come from the pair walk's sums instead.
 void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionNames& names,
-          const std::string& pairs_once) {
+                        const std::string& pairs_once) {
   UsesDx dx;
   bool reads_j = false;
   for (const Accumulate* acc : l.members) {
@@ -398,14 +400,15 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
 // for_each_pair), pair by pair, into per-particle member vectors (kept
 // between steps for their memory) that the particle loop reads.
 void ModelEmitter::pair_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-               NameTable& locals, const std::string& walk) {
+                             NameTable& locals, const std::string& walk,
+                             const std::string& kernel) {
   const std::string i = names.labels[0];
   const std::string j = names.labels[l.members.front()->label];
   UsesDx dx;
   for (const Accumulate* acc : l.members) {
     dx.visit(acc->condition);
     dx.visit(acc->body);
-    linef("{}.assign({}, {});", pair_sums_member(*acc), count, identity(*acc));
+    linef("{}.assign({}, {});", pair_sums_member(*acc, kernel), count, identity(*acc));
   }
   ExpressionNames inner = names;
   inner.dx_norm = dx.norm ? "dx_norm" : "";
@@ -441,15 +444,18 @@ void ModelEmitter::pair_pass(const Loop& l, const ExpressionNames& names, const 
   line("});");
 }
 
-std::string ModelEmitter::pair_sums_member(const Accumulate& acc) {
+// Named after the kernel: step_f_sum_, step_f_count_.
+std::string ModelEmitter::pair_sums_member(const Accumulate& acc, const std::string& kernel) {
   auto it = pair_sums_.find(acc.id);
   if (it != pair_sums_.end()) return it->second.first;
-  const std::string name = members_.fresh(std::string(reduction_name(acc.reduction)) + "_pairs_");
+  const std::string name =
+      members_.fresh(kernel + "_" + std::string(reduction_name(acc.reduction)) + "_");
   pair_sums_[acc.id] = {name, accumulator_type(acc)};
   return name;
 }
 
-void ModelEmitter::assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer) {
+void ModelEmitter::assignment(const Statement& st, const ExpressionNames& names,
+                              const std::string& buffer) {
   const std::string target = names.array(st.set, st.var) + "[" + names.labels[0] + "]";
   const bool wrap = st.var == kPosition &&
                     std::find(m_.domain.periodic.begin(), m_.domain.periodic.end(), true) !=

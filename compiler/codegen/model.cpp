@@ -47,9 +47,9 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
     set_type_.push_back(members_.fresh(s.name + "Set"));
   }
   for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
-  for (const char* api : {"params", "set_seed", "step_count", "param_info", "set_param", "init",
-                          "load", "step", "for_each_set", "search_report", "check_finite",
-                          "compute_constants"})
+  for (const char* api :
+       {"params", "set_seed", "step_count", "param_info", "set_param", "init", "load", "step",
+        "for_each_set", "search_report", "check_finite", "compute_constants"})
     members_.reserve(api);
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
@@ -69,8 +69,7 @@ std::string ModelEmitter::run() {
   line("};");
   if (options_.driver_main) {
     line("");
-    line("int main(int argc, char** argv) { return partc::run_driver<" + cls_ +
-         ">(argc, argv); }");
+    line("int main(int argc, char** argv) { return partc::run_driver<" + cls_ + ">(argc, argv); }");
   }
   line("");
   line("#endif");
@@ -113,8 +112,8 @@ void ModelEmitter::plan_searches() {
         if (facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours) continue;
         if (st.schedule.skin) {
           if (!lists_.count(&st))
-            lists_[&st] = members_.fresh(
-                (st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
+            lists_[&st] =
+                members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
           continue;
         }
         const SearchKey key{st.labels[acc->label].set, st.schedule.search};
@@ -154,9 +153,9 @@ void ModelEmitter::header() {
   std::sort(std_headers.begin(), std_headers.end());
   for (const std::string& h : std_headers) linef("#include <{}>", h);
   line("");
-  std::vector<std::string> headers = {"csv.hpp",          "domain.hpp",   "errors.hpp",
-                                      "finite.hpp",       "math.hpp", "model_support.hpp", "parallel.hpp",
-                                      "particle_set.hpp", "rng.hpp",      "vec.hpp"};
+  std::vector<std::string> headers = {
+      "csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
+      "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp",    "vec.hpp"};
   if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
@@ -243,10 +242,12 @@ void ModelEmitter::set_param() {
   std::vector<std::string> names;
   for (const Param& p : m_.params) {
     names.push_back(p.name);
-    linef("if (name == \"{0}\") {{ params_.{1} = partc::parse_param<{2}>(\"{0}\", value); return; }}",
-          p.name, cpp_name(p.name), cpp_type(p.type));
+    linef(
+        "if (name == \"{0}\") {{ params_.{1} = partc::parse_param<{2}>(\"{0}\", value); return; }}",
+        p.name, cpp_name(p.name), cpp_type(p.type));
   }
-  const std::string listed = names.empty() ? "this model has none" : fmt::format("parameters: {}", fmt::join(names, ", "));
+  const std::string listed =
+      names.empty() ? "this model has none" : fmt::format("parameters: {}", fmt::join(names, ", "));
   linef("throw partc::UsageError(\"unknown parameter '\" + name + \"' ({})\");", listed);
   line("}");
   line("");
@@ -277,13 +278,16 @@ void ModelEmitter::load() {
     names.push_back(name);
     linef("{}.clear();", set_member_[s]);
     linef("if (auto t = tables.find(\"{}\"); t != tables.end())", name);
-    linef("partc::load_set({0}, t->second, domain_, [this](std::size_t i) {{ initialise_{1}(i); }});",
-          set_member_[s], name);
+    linef(
+        "partc::load_set({0}, t->second, domain_, [this](std::size_t i) {{ initialise_{1}(i); }});",
+        set_member_[s], name);
     linef("++{};", epoch_[s]);
   }
   line("for (const auto& [name, table] : tables)");
-  linef("if ({}) throw partc::UsageError(\"no particle set '\" + name + \"' in model {} (sets: {})\");",
-        fmt::join(set_comparisons(names), " && "), m_.name, fmt::join(names, ", "));
+  linef(
+      "if ({}) throw partc::UsageError(\"no particle set '\" + name + \"' in model {} (sets: "
+      "{})\");",
+      fmt::join(set_comparisons(names), " && "), m_.name, fmt::join(names, ", "));
   line("}");
   line("");
 }
@@ -318,9 +322,9 @@ void ModelEmitter::search_report() {
   for (const auto& [key, search] : searches_)
     linef("report.push_back({{\"sums over {0}{1}\", {2}.describe(), {2}.build_count()}});",
           m_.sets[key.first].name,
-          key.second == SearchChoice::Auto ? ""
-                                           : std::string(" (schedule: ") +
-                                                 search_choice_name(key.second) + ")",
+          key.second == SearchChoice::Auto
+              ? ""
+              : std::string(" (schedule: ") + search_choice_name(key.second) + ")",
           search);
   for (const auto& [st, lists] : lists_)
     linef("if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count()}});", lists,
@@ -335,8 +339,8 @@ void ModelEmitter::helpers() {
   line("void compute_constants() {");
   for (std::size_t c = 0; c < m_.consts.size(); ++c)
     if (!evaluate_constant(m_.consts[c].value, m_))
-      linef("{} = {};  // {}", const_member_[c], expression(m_.consts[c].value, initialiser_names(0)),
-            source_line(m_.consts[c].loc));
+      linef("{} = {};  // {}", const_member_[c],
+            expression(m_.consts[c].value, initialiser_names(0)), source_line(m_.consts[c].loc));
   line("}");
   line("");
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
@@ -349,8 +353,9 @@ void ModelEmitter::user_function(int f) {
   const UserFn& fn = m_.functions[f];
   std::vector<std::string> args;
   for (std::size_t k = 0; k < fn.arg_names.size(); ++k)
-    args.push_back((fn.arg_types[k] == Type::Vec ? "const Vec& " : cpp_type(fn.arg_types[k]) + " ") +
-                   cpp_name(fn.arg_names[k]));
+    args.push_back(
+        (fn.arg_types[k] == Type::Vec ? "const Vec& " : cpp_type(fn.arg_types[k]) + " ") +
+        cpp_name(fn.arg_names[k]));
   linef("// {}", source_line(fn.loc));
   linef("//   {}", source_text(fn.loc));
   linef("{} {}({}) const {{ return {}; }}", cpp_type(fn.body->type), function_member_[f],
@@ -373,8 +378,10 @@ void ModelEmitter::create_set(int s) {
         source_line(set.loc));
   linef("void create_{}() {{", set.name);
   linef("const std::int64_t count = {};", expression(set.initial_count, initialiser_names(s)));
-  linef("if (count < 0) throw partc::UsageError(\"particle set {} would have \" + std::to_string(count) + \" particles\");",
-        set.name);
+  linef(
+      "if (count < 0) throw partc::UsageError(\"particle set {} would have \" + "
+      "std::to_string(count) + \" particles\");",
+      set.name);
   linef("{}.clear();", set_member_[s]);
   linef("{}.reserve(static_cast<std::size_t>(count));", set_member_[s]);
   line("for (std::int64_t k = 0; k < count; ++k)");
@@ -463,8 +470,9 @@ void ModelEmitter::state() {
     if (key.second == SearchChoice::Auto)
       linef("partc::NeighbourSearch<{}> {};  // over {}", m_.dim, search, m_.sets[key.first].name);
     else
-      linef("partc::NeighbourSearch<{0}> {1}{{partc::NeighbourSearch<{0}>::Kind::{2}}};  // schedule",
-            m_.dim, search, search_choice_name(key.second));
+      linef(
+          "partc::NeighbourSearch<{0}> {1}{{partc::NeighbourSearch<{0}>::Kind::{2}}};  // schedule",
+          m_.dim, search, search_choice_name(key.second));
     linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", search);
     linef("double {}radius_ = 0;", search);
   }
@@ -472,10 +480,11 @@ void ModelEmitter::state() {
     linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
           source_text(st->schedule.skin->loc));
   for (const auto& [id, sums] : pair_sums_)
-    linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second, sums.first);
+    linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second,
+          sums.first);
   for (const auto& [key, buffer] : buffers_)
-    linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second, buffer.first,
-          m_.sets[key.first].vars[key.second].name);
+    linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second,
+          buffer.first, m_.sets[key.first].vars[key.second].name);
 }
 
 }  // namespace codegen

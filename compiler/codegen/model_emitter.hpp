@@ -186,8 +186,8 @@ class ModelEmitter {
   void loop(const Loop& l, const Statement& st, const ExpressionNames& names,
             const std::string& pairs_once = "");
   void pair_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-                 NameTable& locals, const std::string& walk);
-  std::string pair_sums_member(const Accumulate& acc);
+                 NameTable& locals, const std::string& walk, const std::string& kernel);
+  std::string pair_sums_member(const Accumulate& acc, const std::string& kernel);
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
 
   // ---- state ------------------------------------------------------------
