@@ -429,7 +429,7 @@ void ModelEmitter::pair_pass(const Loop& l, const ExpressionNames& names, const 
     if (test) linef("if ({}) {{", expression(acc->condition, inner));
     if (acc->reduction == Reduction::Count) {
       linef("++{};", of_i.at(acc->id));
-      linef("if ({1} != {2}) ++{0}[{2}];", sums, i, j);
+      linef("if ({2} != {1}) ++{0}[{2}];", sums, i, j);
     } else {
       linef("const {} {} = {};", cpp_type(acc->type), term, expression(acc->body, inner));
       linef("{} += {};", of_i.at(acc->id), term);

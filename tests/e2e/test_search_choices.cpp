@@ -23,12 +23,12 @@ using Model = SearchChoices;
 struct Sums {
   std::vector<Vec2> force;
   std::vector<std::int64_t> close;
-  std::vector<double> weight;
+  std::vector<double> weight, overlap;  // overlap: the sum of 1 - s / r, then over close
 };
 
 Sums reference_sums(const std::vector<Vec2>& p, const std::vector<double>& m, double r) {
   Sums sums{std::vector<Vec2>(p.size(), Vec2{0, 0}), std::vector<std::int64_t>(p.size(), 0),
-            std::vector<double>(p.size(), 0.0)};
+            std::vector<double>(p.size(), 0.0), std::vector<double>(p.size(), 0.0)};
   for (std::size_t i = 0; i < p.size(); ++i)
     for (std::size_t j = 0; j < p.size(); ++j) {
       Vec2 d{p[j][0] - p[i][0], p[j][1] - p[i][1]};
@@ -37,9 +37,11 @@ Sums reference_sums(const std::vector<Vec2>& p, const std::vector<double>& m, do
       if (s >= r) continue;
       ++sums.close[i];
       sums.weight[i] += m[i] * m[j] * (1 - s / r);
+      sums.overlap[i] += 1 - s / r;
       if (s > 0)
         for (int k = 0; k < 2; ++k) sums.force[i][k] += -(1 - s / r) * d[k] / s;
     }
+  for (std::size_t i = 0; i < p.size(); ++i) sums.overlap[i] /= static_cast<double>(sums.close[i]);
   return sums;
 }
 
@@ -94,6 +96,8 @@ TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with br
     CHECK(reference::values_by_id<Model::P_close_auto>(model.P()) == sums.close);
     CHECK(relative_error(reference::values_by_id<Model::P_weight>(model.P()), sums.weight) <= 1e-12);
     CHECK(relative_error(reference::values_by_id<Model::P_weight_auto>(model.P()), sums.weight) <=
+          1e-12);
+    CHECK(relative_error(reference::values_by_id<Model::P_overlap>(model.P()), sums.overlap) <=
           1e-12);
   }
 }
