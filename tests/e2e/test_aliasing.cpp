@@ -12,13 +12,14 @@ using reference::Vec2;
 
 struct State {
   std::vector<Vec2> p;
-  std::vector<double> u, q;
+  std::vector<double> u, q, w;
 };
 
 State state_of(const Aliasing& model) {
   return {reference::positions_by_id(model.P()),
           reference::values_by_id<Aliasing::P_u>(model.P()),
-          reference::values_by_id<Aliasing::P_q>(model.P())};
+          reference::values_by_id<Aliasing::P_q>(model.P()),
+          reference::values_by_id<Aliasing::P_w>(model.P())};
 }
 
 Vec2 dx(const State& s, std::size_t i, std::size_t j) {
@@ -46,6 +47,15 @@ void reference_step(State& s, double h) {
     for (std::size_t j = 0; j < s.p.size(); ++j)
       if (reference::norm(dx(s, i, j)) < h && s.u[j] > 0.5) ++count;
     s.q[i] = 0.5 * s.q[i] + count;
+  }
+  old = s;
+  for (std::size_t i = 0; i < s.p.size(); ++i) {  // w: diffusion, an odd pair term
+    double flow = 0;
+    for (std::size_t j = 0; j < s.p.size(); ++j) {
+      const double r = reference::norm(dx(old, i, j));
+      if (r < h) flow += (old.w[j] - old.w[i]) * std::exp(-r);
+    }
+    s.w[i] = old.w[i] + 0.1 * flow;
   }
   old = s;
   for (std::size_t i = 0; i < s.p.size(); ++i) {
@@ -83,6 +93,7 @@ TEST_CASE("buffered and in-place updates match a double-buffered reference", "[e
   const State got = state_of(model);
   CHECK(worst_difference(got.u, ref.u) <= 1e-12);
   CHECK(worst_difference(got.q, ref.q) <= 1e-9);
+  CHECK(worst_difference(got.w, ref.w) <= 1e-12);
   double worst_p = 0;
   for (std::size_t k = 0; k < got.p.size(); ++k)
     worst_p = std::max(worst_p, reference::norm(reference::minimum_image(
