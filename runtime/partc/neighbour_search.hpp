@@ -4,7 +4,9 @@
 // or a periodic dimension with < 3 cells), a k-d tree when the points are so
 // clustered that a cell list's queries would examine hundreds of points, and
 // the ordered cell list otherwise; a model's schedule can force one of them.
-// for_each_near dispatches with one branch per query.
+// for_each_near dispatches with one branch per query. for_each_pair walks
+// each pair once (slab_schedule.hpp), for sums that obey Newton's third law;
+// pairs_once says when that beats per-particle queries.
 //
 // Query contract: as BruteForce (brute_force.hpp), including its images: a
 // radius over half a periodic length reports every image within the radius.
