@@ -56,8 +56,7 @@ class OrderedCellList {
     for (std::size_t i = n; i-- > 0;) order_[--start_[cell_of_point_[i]]] = i;
     points_.resize(n);
     for (std::size_t k = 0; k < n; ++k) points_[k] = domain.wrap(points[order_[k]]);
-    build_runs_of_cells();
-    make_pair_slabs();
+    make_pair_slabs(build_runs_of_cells());
   }
 
   template <class F>
@@ -181,21 +180,22 @@ class OrderedCellList {
 
   // The runs near each occupied cell, from the bounding box of its points.
   // (In exact mode member queries take the per-point path: no table.)
-  void build_runs_of_cells() {
+  // Returns whether every run stays within its cell's plane and the next,
+  // or, from plane 0, reaches only the last plane (across the periodic edge).
+  bool build_runs_of_cells() {
     const std::size_t n = points_.size();
     cell_of_sorted_.resize(n);
     for (std::size_t k = 0; k < n; ++k) cell_of_sorted_[k] = cell_of_point_[order_[k]];
     runs_.clear();
     run_start_.assign(grid_.cell_count() + 1, 0);
-    runs_within_next_plane_ = false;
-    if (!grid_.shifts_suffice()) return;
+    if (!grid_.shifts_suffice()) return false;
     // Cells are numbered plane by plane (planes of cells along dimension 0):
     // cell c lies in plane a, which ends at cell next_plane, the one after at
     // after_next.
     const std::size_t per_plane = grid_.cell_count() / grid_.cells_along(0);
     const std::size_t last_plane = grid_.cell_count() - per_plane;
     std::size_t a = 0, next_plane = per_plane;
-    runs_within_next_plane_ = true;
+    bool within_next_plane = true;
     for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
       if (c == next_plane) ++a, next_plane += per_plane;
       const std::size_t after_next = next_plane + per_plane;
@@ -218,11 +218,11 @@ class OrderedCellList {
             runs_.push_back({start_[first], start_[last + 1], shift});
             // Beyond the next plane, only plane 0 meeting the last plane (across
             // the periodic edge) keeps the slab rule of for_each_pair.
-            if (last >= after_next && !(a == 0 && first >= last_plane))
-              runs_within_next_plane_ = false;
+            if (last >= after_next && !(a == 0 && first >= last_plane)) within_next_plane = false;
           });
     }
     run_start_.back() = runs_.size();
+    return within_next_plane;
   }
 
   // The slabs of for_each_pair from the planes of cells, when every run of
@@ -231,10 +231,10 @@ class OrderedCellList {
   // a point of plane a join it to planes a and a + 1, or plane 0 to the last
   // one, as the slab rule asks. Cells are at least the radius wide, so this
   // fails only by rounding at a plane's edge; then one slab.
-  void make_pair_slabs() {
+  void make_pair_slabs(bool runs_within_next_plane) {
     const std::size_t n = points_.size();
-    pair_slabs_ = runs_within_next_plane_ ? SlabSchedule::of_planes(plane_starts(), n)
-                                          : SlabSchedule(n);
+    pair_slabs_ = runs_within_next_plane ? SlabSchedule::of_planes(plane_starts(), n)
+                                         : SlabSchedule(n);
   }
 
   CellGrid<D> grid_;
@@ -245,7 +245,6 @@ class OrderedCellList {
   std::vector<std::size_t> cell_of_sorted_;  // the cell of sorted point k
   std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
   std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
-  bool runs_within_next_plane_ = false;      // build_runs_of_cells' check for the slab rule
   SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
 };
 
