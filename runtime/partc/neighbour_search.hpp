@@ -29,6 +29,7 @@
 #include "partc/kd_tree.hpp"
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
+#include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -182,17 +183,13 @@ class NeighbourSearch {
   // N = 10..50 took 0.63-0.68x the time. Otherwise per-particle queries run in
   // parallel, also with results that do not depend on the thread count.
   bool pairs_once() const {
-    return size_ < min_parallel(LoopWork::heavy) ||
-           (kind_ == Kind::cell_list && cell_list_.pair_slabs().count() > 1);
+    return size_ < min_parallel(LoopWork::heavy) || pair_slabs().count() > 1;
   }
 
-  // On the cell-list path with >= 3 planes of cells along the first dimension
-  // and no exact mode: where each plane begins (OrderedCellList::plane_starts).
-  // Else empty.
-  std::vector<std::size_t> plane_starts() const {
-    if (kind_ != Kind::cell_list || !cell_list_.shifts_suffice()) return {};
-    std::vector<std::size_t> starts = cell_list_.plane_starts();
-    return starts.size() >= 4 ? starts : std::vector<std::size_t>{};
+  // The slabs of for_each_pair: the cell list's (OrderedCellList::pair_slabs),
+  // whose pairs j > i all obey the slab rule; one slab on the other paths.
+  SlabSchedule pair_slabs() const {
+    return kind_ == Kind::cell_list ? cell_list_.pair_slabs() : SlabSchedule(size_);
   }
 
   Kind kind() const { return kind_; }
@@ -202,7 +199,7 @@ class NeighbourSearch {
     if (build_count_ == 0) return "not built yet";
     switch (kind_) {
       case Kind::cell_list: {
-        const std::size_t slabs = cell_list_.pair_slabs().count();
+        const std::size_t slabs = pair_slabs().count();
         return "cell list, " + std::to_string(cell_count()) + " cells" +
                (slabs > 1 ? ", pair walks in " + std::to_string(slabs) + " slabs" : "");
       }

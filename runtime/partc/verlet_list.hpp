@@ -27,12 +27,11 @@
 // negative seen from either particle: Newton's third law): for_each_pair walks
 // each pair within radius once, from the lower index i, plus (i, i, 0) once
 // per particle (the full lists include j == i too), so a caller gives the
-// term to both particles and evaluates half as many. The
-// calls run in parallel yet deterministically, in the slabs of the search's
-// cell list (slab_schedule.hpp); every pair is checked against the slab rule
-// at the build; fewer than 4 planes, a search other than the cell list
-// (clustered or tiny sets), or a pair breaking the rule mean one slab (serial
-// pair calls).
+// term to both particles and evaluates half as many. The calls run in
+// parallel yet deterministically, in the slabs of the build's cell list
+// (slab_schedule.hpp), which checked the slab rule for every pair it can
+// report; fewer than 4 planes, a search other than the cell list (clustered
+// or tiny sets), or runs breaking the rule mean one slab (serial pair calls).
 //
 // Surprises:
 // - A rebuild may REORDER the set (as NeighbourSearch::build): indices taken
@@ -257,7 +256,7 @@ class VerletList {
     if (pairs_ == VerletPairs::full)
       make_full_lists();
     else
-      make_slabs(search.plane_starts());
+      make_slabs(search.pair_slabs());
     domain_ = domain;
     radius_ = radius;
     squared_radius_ = radius * radius * (1 + 1e-12);
@@ -293,36 +292,22 @@ class VerletList {
     start_ = std::move(full_start);
   }
 
-  // The slabs of for_each_pair from the planes of the search's cell list, and
-  // across_: per particle, where its pairs across the periodic edge (slab 0 to
-  // slab S - 1) begin, moved to the end of its list. One slab unless every
-  // pair obeys the rule.
-  void make_slabs(const std::vector<std::size_t>& planes) {
-    const std::size_t n = start_.size() - 1;
-    slabs_ = SlabSchedule(n);
+  // The slabs of for_each_pair: the build search's (NeighbourSearch::pair_slabs),
+  // which found every list entry j > i and checked that all such pairs obey
+  // the slab rule. across_: per particle, where its pairs across the periodic
+  // edge (slab 0 to the last slab) begin, moved to the end of its list.
+  void make_slabs(const SlabSchedule& slabs) {
+    slabs_ = slabs;
     across_.assign(start_.begin() + 1, start_.end());
-    const SlabSchedule slabs = SlabSchedule::of_planes(planes, n);
     if (slabs.count() == 1) return;
-    std::vector<std::uint32_t> slab_of(n);
-    for (std::size_t a = 0; a < slabs.count(); ++a)
-      std::fill(slab_of.begin() + static_cast<std::ptrdiff_t>(slabs.start(a)),
-                slab_of.begin() + static_cast<std::ptrdiff_t>(slabs.start(a + 1)),
-                static_cast<std::uint32_t>(a));
-    std::vector<char> broken(blocks_of(n), 0);  // per block of particles, checked in parallel
-    for_each_block(n, [&](std::size_t block, std::size_t first, std::size_t stop) {
-      for (std::size_t i = first; i < stop; ++i)
-        for (std::size_t k = start_[i]; k < start_[i + 1]; ++k)
-          if (!slabs.allows(slab_of[i], slab_of[neighbours_[k]])) broken[block] = 1;
-    });
-    if (std::find(broken.begin(), broken.end(), 1) != broken.end()) return;  // keep one slab
+    const std::size_t edge = slabs.start(slabs.count() - 1);
     for (std::size_t i = slabs.start(0); i < slabs.start(1); ++i) {
       const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
       const auto stop = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i + 1]);
-      const auto across = std::stable_partition(
-          first, stop, [&](std::uint32_t j) { return slab_of[j] + 1 != slabs.count(); });
+      const auto across =
+          std::stable_partition(first, stop, [&](std::uint32_t j) { return j < edge; });
       across_[i] = start_[i] + static_cast<std::size_t>(across - first);
     }
-    slabs_ = slabs;
   }
 
   // The search measures a pair with the query point shifted by a box length, the
