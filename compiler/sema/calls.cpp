@@ -1,0 +1,212 @@
+// Sema: calls of built-in and user functions, random draws, accumulations.
+#include <algorithm>
+#include <map>
+
+#include "sema/checker.hpp"
+
+namespace partc::sema {
+
+namespace {
+
+struct FunctionInfo {
+  ir::Function fn;
+  int arity;
+};
+const std::map<std::string, FunctionInfo> kFunctions = {
+    {"exp", {ir::Function::Exp, 1}},   {"log", {ir::Function::Log, 1}},
+    {"sqrt", {ir::Function::Sqrt, 1}}, {"pow", {ir::Function::Pow, 2}},
+    {"abs", {ir::Function::Abs, 1}},   {"min", {ir::Function::Min, 2}},
+    {"max", {ir::Function::Max, 2}},   {"dot", {ir::Function::Dot, 2}},
+    {"norm", {ir::Function::Norm, 1}}, {"floor", {ir::Function::Floor, 1}},
+    {"sin", {ir::Function::Sin, 1}},   {"cos", {ir::Function::Cos, 1}},
+};
+
+const std::map<std::string, ir::Reduction> kReductions = {
+    {"sum", ir::Reduction::Sum},
+    {"min", ir::Reduction::Min},
+    {"max", ir::Reduction::Max},
+    {"count", ir::Reduction::Count},
+};
+
+}  // namespace
+
+bool Sema::is_builtin_name(const std::string& name) {
+  return kFunctions.count(name) || kReductions.count(name) || name == "dx" || name == "vec" ||
+         is_random_function(name);
+}
+
+bool Sema::is_random_function(const std::string& name) {
+  return name == "uniform" || name == "normal" || name == "uniform_vec" || name == "normal_vec";
+}
+
+Expr Sema::check_call(const ast::Call& n, Scope& scope) {
+  const std::string& name = n.callee.name;
+  const bool binding = !n.args.empty() && boost::get<ast::LabelBinding>(&n.args.front());
+  const auto reduction = kReductions.find(name);
+  if (reduction != kReductions.end() &&
+      (name == "sum" || name == "count" || binding || n.args.size() == 3))
+    return check_accumulation(n, reduction->second, scope);
+  if (binding)
+    fail(ast::location_of(n.args.front()),
+         "'in' binds a label only as the first argument of sum, count, min or max");
+  if (is_random_function(name)) return check_random(n, scope);
+  std::vector<Expr> args;
+  for (const ast::Argument& a : n.args) args.push_back(check(boost::get<ast::Chain>(a), scope));
+  if (name == "vec") {
+    if (static_cast<int>(args.size()) != model_.dim)
+      fail(n.loc, "vec(...) needs " + std::to_string(model_.dim) + " components in a " +
+                      std::to_string(model_.dim) + "-dimensional model, not " +
+                      std::to_string(args.size()));
+    for (std::size_t k = 0; k < args.size(); ++k)
+      if (!ir::is_numeric_scalar(args[k]->type))
+        fail(args[k]->loc,
+             "a vec component must be a number, not a " + std::string(type_name(args[k]->type)));
+    return std::make_shared<ir::MakeVec>(std::move(args), n.loc);
+  }
+  if (scope.function && name == scope.function->name)
+    fail(n.callee.loc, "function " + quoted(name) + " calls itself",
+         "functions are not recursive; write the repetition out");
+  if (auto user = names_.find(name); user != names_.end() && user->second.kind == Name::Fn)
+    return check_user_call(n, user->second.index, std::move(args));
+  auto fn = kFunctions.find(name);
+  if (fn == kFunctions.end()) {
+    std::vector<std::string> known = {"vec",    "sum",         "count",     "uniform",
+                                      "normal", "uniform_vec", "normal_vec"};
+    for (const auto& [k, unused] : kFunctions) known.push_back(k);
+    for (const auto& f : model_.functions) known.push_back(f.name);
+    fail(n.callee.loc, "unknown function " + quoted(name) + suggestion(name, known));
+  }
+  if (static_cast<int>(args.size()) != fn->second.arity)
+    fail(n.loc, name + "() takes " + std::to_string(fn->second.arity) + " argument" +
+                    (fn->second.arity == 1 ? "" : "s") + ", not " + std::to_string(args.size()));
+  return std::make_shared<ir::Call>(call_type(fn->second.fn, name, args), fn->second.fn,
+                                    std::move(args), n.loc);
+}
+
+Expr Sema::check_user_call(const ast::Call& n, int index, std::vector<Expr> args) {
+  const ir::UserFn& fn = model_.functions[index];
+  if (args.size() != fn.arg_names.size())
+    fail(n.loc, fn.name + "() takes " + std::to_string(fn.arg_names.size()) + " argument" +
+                    (fn.arg_names.size() == 1 ? "" : "s") + ", not " + std::to_string(args.size()));
+  for (std::size_t k = 0; k < args.size(); ++k)
+    args[k] = convert(args[k], fn.arg_types[k], args[k]->loc,
+                      "argument " + fn.arg_names[k] + " of " + fn.name);
+  return std::make_shared<ir::FnCall>(fn.body->type, index, std::move(args), n.loc);
+}
+
+Type Sema::call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args) {
+  auto need = [&](std::size_t k, bool ok, const char* what) {
+    if (!ok) fail(args[k]->loc, name + "() needs " + what + ", not a " + type_name(args[k]->type));
+  };
+  switch (fn) {
+    case ir::Function::Dot:
+      need(0, args[0]->type == Type::Vec, "vecs");
+      need(1, args[1]->type == Type::Vec, "vecs");
+      return Type::Real;
+    case ir::Function::Norm: need(0, args[0]->type == Type::Vec, "a vec"); return Type::Real;
+    case ir::Function::Abs:
+      need(0, ir::is_numeric_scalar(args[0]->type), "a number (for a vec's length use |v|)");
+      return args[0]->type;
+    case ir::Function::Min:
+    case ir::Function::Max:
+      need(0, ir::is_numeric_scalar(args[0]->type), "numbers");
+      need(1, ir::is_numeric_scalar(args[1]->type), "numbers");
+      return args[0]->type == Type::Int && args[1]->type == Type::Int ? Type::Int : Type::Real;
+    default:
+      for (std::size_t k = 0; k < args.size(); ++k)
+        need(k, ir::is_numeric_scalar(args[k]->type), "a number");
+      return Type::Real;
+  }
+}
+
+Expr Sema::check_random(const ast::Call& n, Scope& scope) {
+  if (!n.args.empty()) fail(n.loc, n.callee.name + "() takes no arguments");
+  if (scope.where == Scope::Where::Constant)
+    fail(n.loc, scope.context + " cannot be random",
+         "random numbers are drawn per particle, in initial values and statements");
+  if (scope.in_accumulation)
+    fail(n.loc, "random numbers inside an accumulation are not supported",
+         "a draw is keyed by one particle's id; draw per particle outside the sum");
+  const std::string& name = n.callee.name;
+  const bool vec = name.size() > 4 && name.compare(name.size() - 4, 4, "_vec") == 0;
+  const auto dist =
+      name.rfind("uniform", 0) == 0 ? ir::Distribution::Uniform : ir::Distribution::Normal;
+  return std::make_shared<ir::Random>(vec ? Type::Vec : Type::Real, dist, model_.random_streams++,
+                                      n.loc);
+}
+
+Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope& scope) {
+  const std::string& name = n.callee.name;
+  const std::size_t expected_min = reduction == ir::Reduction::Count ? 1 : 2;
+  const std::size_t expected_max = reduction == ir::Reduction::Count ? 2 : 3;
+  if (n.args.size() < expected_min || n.args.size() > expected_max)
+    fail(n.loc, reduction == ir::Reduction::Count
+                    ? "count takes a label and an optional condition: count(j, condition)"
+                    : name + " takes a label, an optional condition and a value: " + name +
+                          "(j, condition, value)");
+  if (scope.where != Scope::Where::Statement)
+    fail(n.loc, "an accumulation over particles cannot appear in " + scope.context);
+  if (scope.in_accumulation)
+    fail(n.loc, "nested accumulations are not supported",
+         "compute the inner one into a variable in an earlier statement");
+
+  // The label: `j` (over the statement's set) or `j in Q`.
+  ir::Label label;
+  Location label_loc;
+  if (auto b = boost::get<ast::LabelBinding>(&n.args.front())) {
+    label = {b->label.name, set_named(b->set)};
+    label_loc = b->label.loc;
+  } else {
+    const ast::Chain& c = boost::get<ast::Chain>(n.args.front());
+    const ast::Operand* sole = ast::sole_operand(c);
+    const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+    if (!id)
+      fail(c.loc,
+           "the first argument of " + name + " must be a new label, as in " + name + "(j, ...)");
+    label = {id->name, scope.labels->front().set};
+    label_loc = id->loc;
+  }
+  if (label.name == scope.labels->front().name)
+    fail(statement_target_,
+         "cannot write " + source_text(statement_target_) + ": " + quoted(label.name) +
+             " is the label of this " + name + ", which runs over other particles",
+         "a statement writes only its own particle, as in v[i] += " + name + "(j, ...)");
+  for (int b : scope.bound)
+    if ((*scope.labels)[b].name == label.name)
+      fail(label_loc, "label " + quoted(label.name) + " is already bound");
+  for (const ir::ParticleSet& s : model_.sets)
+    if (s.find_var(label.name) >= 0)
+      fail(label_loc, "label " + quoted(label.name) + " has the name of a particle variable");
+  if (names_.count(label.name) || label.name == "dx")
+    fail(label_loc, "label " + quoted(label.name) + " has the name of a param, const or set");
+
+  scope.labels->push_back(label);
+  const int label_index = static_cast<int>(scope.labels->size() - 1);
+  Scope inner = scope;
+  inner.bound.push_back(label_index);
+  inner.in_accumulation = true;
+
+  const bool has_condition = n.args.size() == expected_max;
+  Expr condition, body;
+  if (has_condition) {
+    condition = check(argument_chain(n.args[1], name), inner);
+    if (condition->type != Type::Bool)
+      fail(condition->loc,
+           "the condition of " + name + " must be a bool, not a " + type_name(condition->type));
+  }
+  if (reduction != ir::Reduction::Count) {
+    body = check(argument_chain(n.args.back(), name), inner);
+    if (body->type == Type::Bool || (body->type == Type::Vec && reduction != ir::Reduction::Sum))
+      fail(body->loc, name + " cannot accumulate a " + std::string(type_name(body->type)));
+  }
+  const Type type = reduction == ir::Reduction::Count ? Type::Int : body->type;
+  return std::make_shared<ir::Accumulate>(type, reduction, label_index, condition, body,
+                                          model_.accumulations++, n.loc);
+}
+
+const ast::Chain& Sema::argument_chain(const ast::Argument& a, const std::string& name) {
+  if (auto c = boost::get<ast::Chain>(&a)) return *c;
+  fail(ast::location_of(a), "'in' binds a label only in the first argument of " + name);
+}
+
+}  // namespace partc::sema

@@ -1,0 +1,202 @@
+// Sema: the model's header (model, dim, domain) and its declarations.
+#include <algorithm>
+#include <cmath>
+
+#include "ir/constant.hpp"
+#include "sema/checker.hpp"
+
+namespace partc::sema {
+
+ir::Model Sema::run(const ast::Program& program) {
+  const ast::DomainDecl& domain = collect_header(program);
+  for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
+  // After the consts, which its bounds may name.
+  guarded([&] { check_domain(domain); });
+  if (model_.sets.empty() && errors_.empty())
+    errors_.push_back({Location{}, "a model needs at least one particle set",
+                       "declare one with: particles P(N) { v: vec = 0 }"});
+  for (const ast::Declaration& decl : program.declarations)
+    if (auto stage = boost::get<ast::StageBlock>(&decl)) check_stage(*stage);
+  for (const ast::Declaration& decl : program.declarations)
+    if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
+      for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
+  if (!errors_.empty()) throw CompileError(errors_);
+  return std::move(model_);
+}
+
+// Returns the domain declaration, checked once the consts are declared.
+const ast::DomainDecl& Sema::collect_header(const ast::Program& program) {
+  const ast::ModelDecl* model = nullptr;
+  const ast::DimDecl* dim = nullptr;
+  const ast::DomainDecl* domain = nullptr;
+  auto once = [&](auto*& seen, const auto& decl, const char* what) {
+    if (seen)
+      errors_.push_back(
+          {decl.loc, std::string("a second ") + what + " declaration",
+           "the first is on line " + std::to_string(file_.line_column(seen->loc.begin).line)});
+    else
+      seen = &decl;
+  };
+  for (const ast::Declaration& decl : program.declarations) {
+    if (auto m = boost::get<ast::ModelDecl>(&decl)) once(model, *m, "model");
+    if (auto d = boost::get<ast::DimDecl>(&decl)) once(dim, *d, "dim");
+    if (auto d = boost::get<ast::DomainDecl>(&decl)) once(domain, *d, "domain");
+  }
+  const Location start{0, 1};
+  if (!model) errors_.push_back({start, "missing 'model NAME' declaration"});
+  if (!dim) errors_.push_back({start, "missing 'dim N' declaration"});
+  if (!domain) errors_.push_back({start, "missing 'domain lo=(...) hi=(...)' declaration"});
+  if (!errors_.empty()) throw CompileError(errors_);
+
+  model_.name = model->name.name;
+  model_.dim = static_cast<int>(dim->value.value);
+  if (dim->value.value < 1 || dim->value.value > 4)
+    throw CompileError(Diagnostic{dim->value.loc, "dim must be 1, 2, 3 or 4"});
+  return *domain;
+}
+
+void Sema::check_domain(const ast::DomainDecl& decl) {
+  auto bounds = [&](const std::vector<ast::Chain>& tuple, const char* which) {
+    if (static_cast<int>(tuple.size()) != model_.dim)
+      fail(tuple.front().loc, std::string(which) + " has " + std::to_string(tuple.size()) +
+                                  " components but the model has dim " +
+                                  std::to_string(model_.dim));
+    std::vector<double> values;
+    Scope scope;
+    scope.context = "a domain bound";
+    for (const ast::Chain& c : tuple)
+      values.push_back(constant_number(check(c, scope), c.loc, scope));
+    return values;
+  };
+  model_.domain.lo = bounds(decl.lo, "lo");
+  model_.domain.hi = bounds(decl.hi, "hi");
+  for (int k = 0; k < model_.dim; ++k)
+    if (!(model_.domain.lo[k] < model_.domain.hi[k]))
+      fail(decl.hi[k].loc, "the domain is empty along " + std::string(kAxisNames[k]) +
+                               ": hi must be greater than lo");
+  model_.domain.periodic.assign(model_.dim, false);
+  if (!decl.periodic) return;
+  for (const ast::Identifier& axis : *decl.periodic) {
+    const auto* it =
+        std::find(std::begin(kAxisNames), std::begin(kAxisNames) + model_.dim, axis.name);
+    if (it == std::begin(kAxisNames) + model_.dim)
+      fail(axis.loc,
+           "unknown axis " + quoted(axis.name) + " for a " + std::to_string(model_.dim) +
+               "-dimensional domain",
+           "axes are named x, y, z, w");
+    const auto k = it - std::begin(kAxisNames);
+    if (model_.domain.periodic[k]) fail(axis.loc, "axis " + quoted(axis.name) + " listed twice");
+    model_.domain.periodic[k] = true;
+  }
+}
+
+void Sema::declare_global(const ast::Identifier& name, const char* kind) {
+  if (is_builtin_name(name.name))
+    fail(name.loc, quoted(name.name) + " is a builtin name and cannot be redefined");
+  auto [it, fresh] = globals_.emplace(name.name, name.loc);
+  if (!fresh)
+    fail(name.loc, std::string("redefinition of ") + quoted(name.name) + " as a " + kind,
+         "first defined on line " + std::to_string(file_.line_column(it->second.begin).line));
+}
+
+Type Sema::type_named(const ast::Identifier& name, bool allow_vec) {
+  auto it = kTypeNames.find(name.name);
+  if (it == kTypeNames.end() || (!allow_vec && it->second == Type::Vec))
+    fail(name.loc, "unknown type " + quoted(name.name),
+         allow_vec ? "types are real, int, bool and vec" : "param types are real, int and bool");
+  return it->second;
+}
+
+void Sema::declare(const ast::Declaration& decl) {
+  if (auto p = boost::get<ast::ParamDecl>(&decl)) declare_param(*p);
+  if (auto c = boost::get<ast::ConstDecl>(&decl)) declare_const(*c);
+  if (auto f = boost::get<ast::FnDecl>(&decl)) declare_fn(*f);
+  if (auto s = boost::get<ast::ParticlesDecl>(&decl)) declare_set(*s);
+}
+
+void Sema::declare_param(const ast::ParamDecl& decl) {
+  declare_global(decl.name, "param");
+  const Type type = type_named(decl.type, false);
+  Scope scope;
+  scope.context = "a param default";
+  Expr def = check(decl.value, scope);
+  const double value = constant_number(def, decl.value.loc, scope);
+  convert(def, type, decl.value.loc, "param " + decl.name.name);
+  if (type == Type::Int && value != std::floor(value))
+    fail(decl.value.loc, "param " + quoted(decl.name.name) + " is an int but its default is " +
+                             std::to_string(value));
+  model_.params.push_back(
+      {decl.name.name, type, std::make_shared<ir::Literal>(type, value, decl.value.loc), decl.loc});
+  names_.emplace(decl.name.name, Name{Name::Param, static_cast<int>(model_.params.size() - 1)});
+}
+
+void Sema::declare_const(const ast::ConstDecl& decl) {
+  declare_global(decl.name, "const");
+  Scope scope;
+  scope.context = "a const";
+  Expr value = check(decl.value, scope);
+  model_.consts.push_back({decl.name.name, value->type, value, decl.loc});
+  names_.emplace(decl.name.name, Name{Name::Const, static_cast<int>(model_.consts.size() - 1)});
+}
+
+void Sema::declare_fn(const ast::FnDecl& decl) {
+  declare_global(decl.name, "function");
+  ir::UserFn fn;
+  fn.name = decl.name.name;
+  fn.loc = decl.loc;
+  for (const ast::FnParam& a : decl.params) {
+    if (std::find(fn.arg_names.begin(), fn.arg_names.end(), a.name.name) != fn.arg_names.end())
+      fail(a.name.loc, "argument " + quoted(a.name.name) + " listed twice");
+    if (names_.count(a.name.name) || is_builtin_name(a.name.name))
+      fail(a.name.loc, "argument " + quoted(a.name.name) +
+                           " has the name of a param, const, set, function or builtin");
+    fn.arg_names.push_back(a.name.name);
+    fn.arg_types.push_back(type_named(a.type, true));
+  }
+  Scope scope;
+  scope.context = "a function body";
+  scope.function = &fn;
+  fn.body = check(decl.value, scope);
+  model_.functions.push_back(std::move(fn));
+  names_.emplace(decl.name.name, Name{Name::Fn, static_cast<int>(model_.functions.size() - 1)});
+}
+
+void Sema::declare_set(const ast::ParticlesDecl& decl) {
+  declare_global(decl.name, "particle set");
+  ir::ParticleSet set;
+  set.name = decl.name.name;
+  set.loc = decl.loc;
+  Scope count_scope;
+  count_scope.context = "a particle count";
+  set.initial_count = convert(check(decl.count, count_scope), Type::Int, decl.count.loc,
+                              "the particle count of " + set.name);
+  set.vars.push_back({"p", Type::Vec, nullptr, true, decl.name.loc});
+  set.vars.push_back({"id", Type::Int, nullptr, true, decl.name.loc});
+  set.vars.push_back({"alive", Type::Bool, nullptr, true, decl.name.loc});
+  const int set_index = static_cast<int>(model_.sets.size());
+  for (const ast::VarDecl& var : decl.vars) {
+    guarded([&] {
+      if (set.find_var(var.name.name) >= 0)
+        fail(var.name.loc, set.find_var(var.name.name) < ir::kFirstUserVar
+                               ? quoted(var.name.name) + " is a builtin variable of every set"
+                               : "variable " + quoted(var.name.name) + " declared twice");
+      if (names_.count(var.name.name) || is_builtin_name(var.name.name))
+        fail(var.name.loc, "variable " + quoted(var.name.name) +
+                               " has the name of a param, const, set or builtin");
+      const Type type = type_named(var.type, true);
+      Expr initial;
+      if (var.value) {
+        Scope scope;
+        scope.where = Scope::Where::Initialiser;
+        scope.context = "an initial value";
+        initial =
+            convert(check(*var.value, scope), type, var.value->loc, "variable " + var.name.name);
+      }
+      set.vars.push_back({var.name.name, type, initial, false, var.loc});
+    });
+  }
+  model_.sets.push_back(std::move(set));
+  names_.emplace(decl.name.name, Name{Name::Set, set_index});
+}
+
+}  // namespace partc::sema

@@ -1,0 +1,271 @@
+// Sema: names, operators, conversions between types.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "ir/constant.hpp"
+#include "sema/checker.hpp"
+
+namespace partc::sema {
+
+// The value converted to `to` for storing in `what`, or an error.
+Expr Sema::convert(Expr value, Type to, Location at, const std::string& what) {
+  const Type from = value->type;
+  if (from == to) return value;
+  if (from == Type::Int && to == Type::Real) return value;  // C++ promotes
+  if (to == Type::Vec && ir::is_numeric_scalar(from)) {
+    if (is_uniform(value)) {
+      std::vector<Expr> components(model_.dim, value);
+      return std::make_shared<ir::MakeVec>(std::move(components), value->loc);
+    }
+    fail(at, "cannot store a " + std::string(type_name(from)) + " in " + what + ", which is a vec",
+         "a vec needs " + std::to_string(model_.dim) +
+             " components: write vec(...), or a vector expression");
+  }
+  if (from == Type::Real && to == Type::Int)
+    fail(at, "cannot store a real in " + what + ", which is an int",
+         "int values are exact; round explicitly, e.g. with floor(), into a real variable");
+  fail(at, "cannot store a " + std::string(type_name(from)) + " in " + what + ", which is a " +
+               type_name(to));
+}
+
+double Sema::constant_number(const Expr& e, Location at, const Scope& scope) {
+  if (!ir::is_numeric_scalar(e->type) && e->type != Type::Bool)
+    fail(at, scope.context + " must be a number, not a " + type_name(e->type));
+  auto value = evaluate_constant(e, model_);
+  if (!value)
+    fail(at, scope.context + " must be known when partc runs",
+         "use literals and consts built from literals here, not params");
+  if (!std::isfinite(*value)) fail(at, scope.context + " evaluates to " + std::to_string(*value));
+  return *value;
+}
+
+Expr Sema::check(const ast::Chain& chain, Scope& scope) {
+  Expr lhs = check(chain.first, scope);
+  std::optional<ir::BinaryOp> previous_comparison;
+  for (const ast::BinaryOp& step : chain.rest) {
+    Expr rhs = check(step.rhs, scope);
+    const Location loc{ast::location_of(chain.first).begin, step.loc.end};
+    const ir::BinaryOp op = binary_op(step.op);
+    const bool comparison = op >= ir::BinaryOp::Lt && op <= ir::BinaryOp::Ne;
+    if (comparison && previous_comparison)
+      fail(loc, "comparisons do not chain", "write 'a < b and b < c' instead of 'a < b < c'");
+    if (comparison) previous_comparison = op;
+    lhs = binary(op, lhs, rhs, loc, step.loc);
+  }
+  return lhs;
+}
+
+ir::BinaryOp Sema::binary_op(const std::string& s) {
+  static const std::map<std::string, ir::BinaryOp> ops = {
+      {"+", ir::BinaryOp::Add}, {"-", ir::BinaryOp::Sub},   {"*", ir::BinaryOp::Mul},
+      {"/", ir::BinaryOp::Div}, {"<", ir::BinaryOp::Lt},    {"<=", ir::BinaryOp::Le},
+      {">", ir::BinaryOp::Gt},  {">=", ir::BinaryOp::Ge},   {"==", ir::BinaryOp::Eq},
+      {"!=", ir::BinaryOp::Ne}, {"and", ir::BinaryOp::And}, {"or", ir::BinaryOp::Or}};
+  return ops.at(s);
+}
+
+Expr Sema::binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc) {
+  const Type ta = a->type, tb = b->type;
+  const std::string spelled = binary_op_spelling(op);
+  auto mismatch = [&](std::string note = {}) -> Expr {
+    fail(op_loc, "'" + spelled + "' cannot combine a " + type_name(ta) + " and a " + type_name(tb),
+         std::move(note));
+  };
+  const bool scalars = ir::is_numeric_scalar(ta) && ir::is_numeric_scalar(tb);
+  const Type numeric = ta == Type::Int && tb == Type::Int ? Type::Int : Type::Real;
+  Type result = Type::Bool;
+  switch (op) {
+    case ir::BinaryOp::Add:
+    case ir::BinaryOp::Sub:
+      if (scalars)
+        result = numeric;
+      else if (ta == Type::Vec && tb == Type::Vec)
+        result = Type::Vec;
+      else
+        return mismatch("vectors add only to vectors");
+      break;
+    case ir::BinaryOp::Mul:
+      if (scalars)
+        result = numeric;
+      else if ((ta == Type::Vec && ir::is_numeric_scalar(tb)) ||
+               (tb == Type::Vec && ir::is_numeric_scalar(ta)))
+        result = Type::Vec;
+      else if (ta == Type::Vec && tb == Type::Vec)
+        return mismatch("for the inner product write dot(a, b)");
+      else
+        return mismatch();
+      break;
+    case ir::BinaryOp::Div:
+      // int / int is real division: 3 / N must not silently truncate to 0.
+      if (scalars)
+        result = Type::Real;
+      else if (ta == Type::Vec && ir::is_numeric_scalar(tb))
+        result = Type::Vec;
+      else
+        return mismatch();
+      break;
+    case ir::BinaryOp::Lt:
+    case ir::BinaryOp::Le:
+    case ir::BinaryOp::Gt:
+    case ir::BinaryOp::Ge:
+      if (!scalars)
+        return mismatch(
+            ta == Type::Vec || tb == Type::Vec ? "compare lengths instead, e.g. |dx| < rc" : "");
+      result = Type::Bool;
+      break;
+    case ir::BinaryOp::Eq:
+    case ir::BinaryOp::Ne:
+      if (!scalars && !(ta == Type::Bool && tb == Type::Bool)) return mismatch();
+      result = Type::Bool;
+      break;
+    case ir::BinaryOp::And:
+    case ir::BinaryOp::Or:
+      if (ta != Type::Bool || tb != Type::Bool) return mismatch("'and' and 'or' take bools");
+      result = Type::Bool;
+      break;
+  }
+  return std::make_shared<ir::Binary>(result, op, a, b, loc);
+}
+
+struct Sema::CheckOperand {
+  Sema& sema;
+  Scope& scope;
+  Expr operator()(const ast::IntLiteral& n) const {
+    return std::make_shared<ir::Literal>(Type::Int, static_cast<double>(n.value), n.loc);
+  }
+  Expr operator()(const ast::RealLiteral& n) const {
+    return std::make_shared<ir::Literal>(Type::Real, n.value, n.loc);
+  }
+  Expr operator()(const ast::BoolLiteral& n) const {
+    return std::make_shared<ir::Literal>(Type::Bool, n.value ? 1.0 : 0.0, n.loc);
+  }
+  Expr operator()(const ast::Identifier& n) const { return sema.check_name(n, scope); }
+  Expr operator()(const ast::Indexed& n) const { return sema.check_indexed(n, scope); }
+  Expr operator()(const ast::Call& n) const { return sema.check_call(n, scope); }
+  Expr operator()(const ast::Norm& n) const {
+    Expr inner = sema.check(n.inner, scope);
+    if (inner->type == Type::Vec)
+      return std::make_shared<ir::Call>(Type::Real, ir::Function::Norm, std::vector<Expr>{inner},
+                                        n.loc);
+    if (ir::is_numeric_scalar(inner->type))
+      return std::make_shared<ir::Call>(inner->type, ir::Function::Abs, std::vector<Expr>{inner},
+                                        n.loc);
+    fail(n.loc, "|...| needs a number or a vec, not a bool");
+  }
+  Expr operator()(const ast::Unary& n) const {
+    Expr a = sema.check(n.operand, scope);
+    if (n.op == "not") {
+      if (a->type != Type::Bool)
+        fail(n.loc, "'not' needs a bool, not a " + std::string(type_name(a->type)));
+      return std::make_shared<ir::Unary>(Type::Bool, ir::UnaryOp::Not, a, n.loc);
+    }
+    if (a->type == Type::Bool) fail(n.loc, "'" + n.op + "' needs a number or a vec, not a bool");
+    if (n.op == "+") return a;
+    return std::make_shared<ir::Unary>(a->type, ir::UnaryOp::Neg, a, n.loc);
+  }
+  Expr operator()(const ast::Postfix& n) const {
+    Expr e = sema.check(n.base, scope);
+    for (const ast::Identifier& c : n.components) {
+      if (e->type != Type::Vec)
+        fail(c.loc, "." + c.name + " needs a vec, not a " + type_name(e->type));
+      const auto* it =
+          std::find(std::begin(kAxisNames), std::begin(kAxisNames) + sema.model_.dim, c.name);
+      if (it == std::begin(kAxisNames) + sema.model_.dim)
+        fail(c.loc, "no component ." + c.name + " in a " + std::to_string(sema.model_.dim) +
+                        "-dimensional vec");
+      e = std::make_shared<ir::Component>(e, static_cast<int>(it - std::begin(kAxisNames)),
+                                          Location{e->loc.begin, c.loc.end});
+    }
+    return e;
+  }
+  Expr operator()(const ast::Chain& n) const { return sema.check(n, scope); }
+  template <class Node>
+  Expr operator()(const ast::x3::forward_ast<Node>& n) const {
+    return (*this)(n.get());
+  }
+};
+
+Expr Sema::check(const ast::Operand& operand, Scope& scope) {
+  return boost::apply_visitor(CheckOperand{*this, scope}, operand);
+}
+
+Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
+  if (n.name == "dx") {
+    if (!scope.in_accumulation)
+      fail(n.loc, "dx is only defined inside an accumulation",
+           "dx is the shortest vector from particle i to particle j, as in sum(j, |dx| < rc, ...)");
+    return std::make_shared<ir::Dx>(scope.bound.front(), scope.bound.back(), n.loc);
+  }
+  if (scope.function) {
+    const auto& args = scope.function->arg_names;
+    const auto arg = std::find(args.begin(), args.end(), n.name);
+    if (arg != args.end()) {
+      const int index = static_cast<int>(arg - args.begin());
+      return std::make_shared<ir::FnArg>(scope.function->arg_types[index], index, n.name, n.loc);
+    }
+  }
+  auto it = names_.find(n.name);
+  if (it != names_.end()) {
+    switch (it->second.kind) {
+      case Name::Param:
+        return std::make_shared<ir::ParamRef>(model_.params[it->second.index].type,
+                                              it->second.index, n.loc);
+      case Name::Const:
+        return std::make_shared<ir::ConstRef>(model_.consts[it->second.index].type,
+                                              it->second.index, n.loc);
+      case Name::Set: fail(n.loc, quoted(n.name) + " is a particle set, not a value");
+      case Name::Fn:
+        fail(n.loc, quoted(n.name) + " is a function; call it, as in " + n.name + "(...)");
+    }
+  }
+  if (is_builtin_name(n.name))
+    fail(n.loc, quoted(n.name) + " is a function; call it, as in " + n.name + "(...)");
+  if (scope.labels) {
+    for (const ir::Label& l : *scope.labels)
+      if (l.name == n.name)
+        fail(n.loc,
+             quoted(n.name) + " is a label; index a variable with it, as in v[" + n.name + "]");
+    for (const ir::ParticleSet& s : model_.sets)
+      if (s.find_var(n.name) >= 0)
+        fail(n.loc, quoted(n.name) + " is a particle variable; index it with a label, as in " +
+                        n.name + "[" + scope.labels->front().name + "]");
+  }
+  std::vector<std::string> known;
+  for (const auto& [name, unused] : names_) known.push_back(name);
+  fail(n.loc, "unknown name " + quoted(n.name) + suggestion(n.name, known));
+}
+
+Expr Sema::check_indexed(const ast::Indexed& n, Scope& scope) {
+  if (scope.where != Scope::Where::Statement)
+    fail(n.loc, scope.context + " cannot read particle variables",
+         scope.where == Scope::Where::Initialiser
+             ? "initial values may use params, consts and random numbers; set values "
+               "that depend on other variables in the init block"
+         : scope.function ? "pass the value as an argument, e.g. fn " + scope.function->name +
+                                "(..., " + n.var.name + ": " + "real)"
+                          : "");
+  int label = -1;
+  for (int b : scope.bound)
+    if ((*scope.labels)[b].name == n.label.name) label = b;
+  if (label < 0) {
+    for (const ir::Label& l : *scope.labels)
+      if (l.name == n.label.name)
+        fail(n.label.loc,
+             "label " + quoted(n.label.name) + " is only bound inside its accumulation");
+    fail(n.label.loc, "label " + quoted(n.label.name) + " is not bound here",
+         "a statement names its own particle by the label of its target (" +
+             scope.labels->front().name +
+             "); other particles are named by an accumulation, as in sum(" + n.label.name +
+             ", ...)");
+  }
+  const int set_index = (*scope.labels)[label].set;
+  const ir::ParticleSet& set = model_.sets[set_index];
+  const int var = set.find_var(n.var.name);
+  if (var < 0)
+    fail(n.var.loc, quoted(n.var.name) + " is not a variable of particle set " + set.name +
+                        suggestion(n.var.name, var_names(set)));
+  return std::make_shared<ir::VarRef>(set.vars[var].type, set_index, var, label, n.loc);
+}
+
+}  // namespace partc::sema
