@@ -38,6 +38,17 @@ std::pair<std::string, std::uint32_t> token_at(grammar::Iterator it, grammar::It
   return {"'" + std::string(it, stop) + "'", static_cast<std::uint32_t>(stop - it)};
 }
 
+// What a C or Python habit at `it` is written as in .part.
+std::string habit_note(grammar::Iterator it, grammar::Iterator end) {
+  const std::string next(it, end - it >= 2 ? it + 2 : end);
+  if (next == "&&") return "write 'and' for &&";
+  if (next == "||") return "write 'or' for ||";
+  if (next[0] == '!' && next != "!=") return "write 'not' for !";
+  if (next[0] == '%') return "write mod(a, b) for a % b";
+  if (next[0] == '^') return "write pow(a, b) for a power";
+  return {};
+}
+
 }  // namespace
 
 ast::Program parse_program(const SourceFile& file) {
@@ -48,14 +59,15 @@ ast::Program parse_program(const SourceFile& file) {
   try {
     namespace x3 = boost::spirit::x3;
     x3::phrase_parse(first, text.end(),
-                     x3::with<grammar::source_begin_tag>(begin)[grammar::program],
-                     grammar::skipper, program.declarations);
+                     x3::with<grammar::source_begin_tag>(begin)[grammar::program], grammar::skipper,
+                     program.declarations);
   } catch (const boost::spirit::x3::expectation_failure<grammar::Iterator>& failure) {
     const grammar::Iterator at = skip_blanks(failure.where(), text.end());
     const auto [found, length] = token_at(at, text.end());
     const auto offset = static_cast<std::uint32_t>(at - begin);
-    throw CompileError(
-        Diagnostic{{offset, offset + length}, "expected " + failure.which() + ", found " + found});
+    throw CompileError(Diagnostic{{offset, offset + length},
+                                  "expected " + failure.which() + ", found " + found,
+                                  habit_note(at, text.end())});
   }
   return program;
 }

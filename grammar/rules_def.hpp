@@ -317,9 +317,10 @@ auto const compare_tail_def = compare_op > additive;
 auto const additive_def = multiplicative >> *additive_tail;
 auto const additive_tail_def = (x3::string("+") | x3::string("-")) >> !lit('=') > multiplicative;
 
-// multiplicative = unary , { ( "*" | "/" ) , unary } ;
+// multiplicative = unary , { ( "*" | "//" | "/" ) , unary } ;
 auto const multiplicative_def = unary >> *multiplicative_tail;
-auto const multiplicative_tail_def = (x3::string("*") | x3::string("/")) >> !lit('=') > unary;
+auto const multiplicative_tail_def =
+    (x3::string("*") | x3::string("//") | x3::string("/")) >> !lit('=') > unary;
 
 // unary = ( "-" | "+" ) , unary | postfix ;
 auto const unary_def = negation | postfix;

@@ -79,6 +79,12 @@ class PairExchange {
       }
       case ir::ExprKind::Component: return parity(ir::as<ir::Component>(e)->vec);
       case ir::ExprKind::FnCall: return found(e, all_even(ir::as<ir::FnCall>(e)->args));
+      // T picks the same branch when it leaves the condition alone.
+      case ir::ExprKind::Select: {
+        auto s = ir::as<ir::Select>(e);
+        if (parity(s->condition) != Parity::Even) return neither(e);
+        return found(e, alike(parity(s->then), parity(s->otherwise)));
+      }
       // Random draws are rejected in accumulations by sema, nested ones too,
       // and function arguments exist only in function bodies.
       case ir::ExprKind::Random:
@@ -137,8 +143,15 @@ class PairExchange {
         const Parity p = parity(c.args[0]);
         return found(self, p == Parity::Neither ? Parity::Neither : Parity::Even);
       }
-      case ir::Function::Sin: return parity(c.args[0]);  // sin(-x) = -sin(x)
-      case ir::Function::Dot: return found(self, times(parity(c.args[0]), parity(c.args[1])));
+      // Odd functions: sin(-x) = -sin(x), and so on.
+      case ir::Function::Sin:
+      case ir::Function::Tan:
+      case ir::Function::Asin:
+      case ir::Function::Atan:
+      case ir::Function::Tanh:
+      case ir::Function::Sign: return parity(c.args[0]);
+      case ir::Function::Dot:
+      case ir::Function::Cross: return found(self, times(parity(c.args[0]), parity(c.args[1])));
       default: return found(self, all_even(c.args));
     }
   }
@@ -188,6 +201,11 @@ class PairExchange {
       case ir::ExprKind::FnCall: {
         auto x = ir::as<ir::FnCall>(a), y = ir::as<ir::FnCall>(b);
         return x->fn == y->fn && all_twins(x->args, y->args);
+      }
+      case ir::ExprKind::Select: {
+        auto x = ir::as<ir::Select>(a), y = ir::as<ir::Select>(b);
+        return twins(x->condition, y->condition) && twins(x->then, y->then) &&
+               twins(x->otherwise, y->otherwise);
       }
       // T negates dx, so dx has no twin of the same form; the rest cannot
       // occur in an accumulation.

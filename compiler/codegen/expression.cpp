@@ -18,6 +18,7 @@ using namespace ir;
 
 // C++ precedence levels, higher binds tighter.
 enum Precedence {
+  kConditional = 2,
   kOr = 4,
   kAnd = 5,
   kEquality = 9,
@@ -38,7 +39,8 @@ int precedence_of(BinaryOp op) {
     case BinaryOp::Add:
     case BinaryOp::Sub: return kAdditive;
     case BinaryOp::Mul:
-    case BinaryOp::Div: return kMultiplicative;
+    case BinaryOp::Div:
+    case BinaryOp::FloorDiv: return kMultiplicative;
     case BinaryOp::Lt:
     case BinaryOp::Le:
     case BinaryOp::Gt:
@@ -91,6 +93,12 @@ class Printer {
       case ExprKind::Random: return {random(*as<Random>(e)), kPrimary};
       case ExprKind::Accumulate: return {names_.accumulators.at(as<Accumulate>(e)->id), kPrimary};
       case ExprKind::FnArg: return {cpp_name(as<FnArg>(e)->name), kPrimary};
+      case ExprKind::Select: {
+        auto c = as<Select>(e);
+        return {at_least(c->condition, kOr) + " ? " + branch(c->then, c->type) + " : " +
+                    branch(c->otherwise, c->type),
+                kConditional};
+      }
       case ExprKind::FnCall: {
         auto c = as<FnCall>(e);
         std::vector<std::string> args;  // an int passed for a real converts in the call
@@ -109,7 +117,20 @@ class Printer {
     return {"-" + operand, kUnary};
   }
 
+  // A branch of c ? a : b, converted to the result's type: an int branch
+  // beside a real one must not make C++ pick a type of its own.
+  std::string branch(const Expr& e, Type type) {
+    if (e->type == Type::Int && type == Type::Real) {
+      if (auto lit = as<Literal>(e)) return emit_literal(Type::Real, lit->value);
+      return "static_cast<double>(" + print(e).text + ")";
+    }
+    return at_least(e, kConditional);
+  }
+
   Printed binary(const Binary& n) {
+    if (n.op == BinaryOp::FloorDiv)
+      return {fmt::format("partc::floor_div({}, {})", print(n.lhs).text, print(n.rhs).text),
+              kPrimary};
     const int p = precedence_of(n.op);
     std::string lhs = at_least(n.lhs, p);
     // int / int is real division in .part.
@@ -136,6 +157,14 @@ class Printer {
       case Function::Max:
         return {fmt::format("std::{}<{}>({}, {})", function_name(n.fn), cpp_type(n.type), args[0],
                             args[1]),
+                kPrimary};
+      // partc/math.hpp and partc/vec.hpp: the same for ints and reals, as .part means them.
+      case Function::Sign:
+      case Function::Mod:
+      case Function::Cross:
+        return {fmt::format("partc::{}({})", function_name(n.fn), fmt::join(args, ", ")), kPrimary};
+      case Function::Clamp:
+        return {fmt::format("partc::clamp<{}>({})", cpp_type(n.type), fmt::join(args, ", ")),
                 kPrimary};
       default:
         return {fmt::format("std::{}({})", function_name(n.fn), fmt::join(args, ", ")), kPrimary};

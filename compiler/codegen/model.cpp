@@ -378,10 +378,12 @@ void ModelEmitter::create_set(int s) {
         source_line(set.loc));
   linef("void create_{}() {{", set.name);
   linef("const std::int64_t count = {};", expression(set.initial_count, initialiser_names(s)));
-  linef(
-      "if (count < 0) throw partc::UsageError(\"particle set {} would have \" + "
-      "std::to_string(count) + \" particles\");",
-      set.name);
+  // A constant count is checked by partc; one from params only now.
+  if (!evaluate_constant(set.initial_count, m_))
+    linef(
+        "if (count < 0) throw partc::UsageError(\"{}: particle set {} would have \" + "
+        "std::to_string(count) + \" particles ({})\");",
+        source_line(set.loc), set.name, source_text(set.initial_count->loc));
   linef("{}.clear();", set_member_[s]);
   linef("{}.reserve(static_cast<std::size_t>(count));", set_member_[s]);
   line("for (std::int64_t k = 0; k < count; ++k)");

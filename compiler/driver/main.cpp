@@ -135,6 +135,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const partc::Compilation c = partc::analyse(*file);
+    for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
     if (options.explain) std::cout << partc::explain(c, *file);
     if (options.emit == "ir") {
       write_output(options.output, partc::ir::to_string(c.model));
@@ -149,10 +150,12 @@ int main(int argc, char** argv) {
     write_output(options.output, partc::format_cpp(code, name));
     return 0;
   } catch (const partc::CompileError& e) {
-    for (const partc::Diagnostic& d : e.diagnostics())
+    std::size_t errors = 0;
+    for (const partc::Diagnostic& d : e.diagnostics()) {
       std::cerr << partc::format_diagnostic(*file, d);
-    if (e.diagnostics().size() > 1)
-      std::cerr << e.diagnostics().size() << " errors\n";
+      errors += !d.warning;
+    }
+    if (errors > 1) std::cerr << errors << " errors\n";
     return 1;
   } catch (const partc::InternalError& e) {
     std::cerr << "partc: internal error: partc bug: " << e.what() << "\n";

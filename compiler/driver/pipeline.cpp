@@ -14,7 +14,7 @@ Compilation analyse(const SourceFile& file) {
   // Text to syntax tree; syntax errors stop here, with what was expected.
   c.ast = parse_program(file);
   // Names and types: everything later can trust the IR to be well typed.
-  c.model = build_ir(c.ast, file);
+  c.model = build_ir(c.ast, file, c.warnings);
   // Facts the code generator acts on. Each pass reads the IR only.
   c.facts.uniform_sums = find_uniform_sums(c.model);
   c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);

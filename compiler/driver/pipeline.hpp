@@ -6,6 +6,7 @@
 #include "ast/ast.hpp"
 #include "codegen/codegen.hpp"
 #include "ir/ir.hpp"
+#include "support/diagnostics.hpp"
 #include "support/source.hpp"
 
 namespace partc {
@@ -14,6 +15,7 @@ struct Compilation {
   ast::Program ast;
   ir::Model model;
   ModelFacts facts;
+  std::vector<Diagnostic> warnings;
 };
 
 // Front end and analyses; throws CompileError for a bad model.

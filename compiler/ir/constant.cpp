@@ -11,7 +11,8 @@ using namespace ir;
 
 namespace {
 
-std::optional<double> apply_function(Function fn, const std::vector<double>& a) {
+// As partc/math.hpp computes them at run time; `type` is the call's.
+std::optional<double> apply_function(Function fn, const std::vector<double>& a, Type type) {
   switch (fn) {
     case Function::Exp: return std::exp(a[0]);
     case Function::Log: return std::log(a[0]);
@@ -23,8 +24,22 @@ std::optional<double> apply_function(Function fn, const std::vector<double>& a) 
     case Function::Floor: return std::floor(a[0]);
     case Function::Sin: return std::sin(a[0]);
     case Function::Cos: return std::cos(a[0]);
+    case Function::Ceil: return std::ceil(a[0]);
+    case Function::Round: return std::round(a[0]);
+    case Function::Tan: return std::tan(a[0]);
+    case Function::Asin: return std::asin(a[0]);
+    case Function::Acos: return std::acos(a[0]);
+    case Function::Atan: return std::atan(a[0]);
+    case Function::Atan2: return std::atan2(a[0], a[1]);
+    case Function::Tanh: return std::tanh(a[0]);
+    case Function::Sign: return double((a[0] > 0) - (a[0] < 0));
+    case Function::Clamp: return a[0] < a[1] ? a[1] : a[0] > a[2] ? a[2] : a[0];
+    case Function::Mod:
+      if (type == Type::Int && a[1] == 0) return 0.0;
+      return a[0] - a[1] * std::floor(a[0] / a[1]);
     case Function::Dot:
-    case Function::Norm: return std::nullopt;  // vector arguments
+    case Function::Norm:
+    case Function::Cross: return std::nullopt;  // vector arguments
   }
   return std::nullopt;
 }
@@ -35,6 +50,7 @@ std::optional<double> apply_binary(BinaryOp op, double a, double b) {
     case BinaryOp::Sub: return a - b;
     case BinaryOp::Mul: return a * b;
     case BinaryOp::Div: return a / b;
+    case BinaryOp::FloorDiv: return b == 0 ? 0.0 : std::floor(a / b);
     case BinaryOp::Lt: return a < b;
     case BinaryOp::Le: return a <= b;
     case BinaryOp::Gt: return a > b;
@@ -79,6 +95,11 @@ std::optional<double> evaluate_constant(const Expr& e, const Model& model) {
     if (!l || !r) return std::nullopt;
     return apply_binary(b->op, *l, *r);
   }
+  if (auto s = as<Select>(e)) {
+    auto c = evaluate_constant(s->condition, model);
+    if (!c) return std::nullopt;
+    return evaluate_constant(*c != 0 ? s->then : s->otherwise, model);
+  }
   if (auto c = as<Call>(e)) {
     std::vector<double> args;
     for (const Expr& a : c->args) {
@@ -86,7 +107,7 @@ std::optional<double> evaluate_constant(const Expr& e, const Model& model) {
       if (!v) return std::nullopt;
       args.push_back(*v);
     }
-    return apply_function(c->fn, args);
+    return apply_function(c->fn, args, c->type);
   }
   return std::nullopt;
 }

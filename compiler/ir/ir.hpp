@@ -34,6 +34,7 @@ enum class ExprKind {
   Accumulate,
   FnArg,
   FnCall,
+  Select,
 };
 
 struct ExprNode {
@@ -98,7 +99,8 @@ struct Unary : ExprNode {
   const Expr operand;
 };
 
-enum class BinaryOp { Add, Sub, Mul, Div, Lt, Le, Gt, Ge, Eq, Ne, And, Or };
+// FloorDiv is `//` on ints: floored, as Python's (and 0 when dividing by 0).
+enum class BinaryOp { Add, Sub, Mul, Div, FloorDiv, Lt, Le, Gt, Ge, Eq, Ne, And, Or };
 const char* binary_op_spelling(BinaryOp op);  // as in .part: "+", "<=", "and"
 struct Binary : ExprNode {
   static constexpr ExprKind node_kind = ExprKind::Binary;
@@ -108,8 +110,13 @@ struct Binary : ExprNode {
   const Expr lhs, rhs;
 };
 
-// Built-in pure functions. Norm covers both |v| and norm(v).
-enum class Function { Exp, Log, Sqrt, Pow, Abs, Min, Max, Dot, Norm, Floor, Sin, Cos };
+// Built-in pure functions. Norm covers both |v| and norm(v). Mod is floored
+// (the sign of the divisor, as Python's %); Cross is a vec in 3D and the
+// scalar z-component in 2D.
+enum class Function {
+  Exp, Log, Sqrt, Pow, Abs, Min, Max, Dot, Norm, Floor, Ceil, Round,
+  Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Tanh, Sign, Clamp, Mod, Cross
+};
 const char* function_name(Function f);
 struct Call : ExprNode {
   static constexpr ExprKind node_kind = ExprKind::Call;
@@ -184,6 +191,18 @@ struct FnCall : ExprNode {
       : ExprNode(node_kind, t, l), fn(f), args(std::move(a)) {}
   const int fn;
   const std::vector<Expr> args;
+};
+
+// if(condition, then, otherwise): only the chosen branch is evaluated, so
+// a guarded division never produces a value that is then thrown away.
+struct Select : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::Select;
+  Select(Type t, Expr c, Expr a, Expr b, Location l)
+      : ExprNode(node_kind, t, l),
+        condition(std::move(c)),
+        then(std::move(a)),
+        otherwise(std::move(b)) {}
+  const Expr condition, then, otherwise;
 };
 
 // ---- Declarations -------------------------------------------------------

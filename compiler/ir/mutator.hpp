@@ -28,6 +28,7 @@ class Mutator {
   virtual Expr mutate(const Call& n, const Expr& self);
   virtual Expr mutate(const MakeVec& n, const Expr& self);
   virtual Expr mutate(const Component& n, const Expr& self);
+  virtual Expr mutate(const Select& n, const Expr& self);
   virtual Expr mutate(const Accumulate& n, const Expr& self);
 };
 

@@ -9,6 +9,7 @@ const char* binary_op_spelling(BinaryOp op) {
     case BinaryOp::Sub: return "-";
     case BinaryOp::Mul: return "*";
     case BinaryOp::Div: return "/";
+    case BinaryOp::FloorDiv: return "//";
     case BinaryOp::Lt: return "<";
     case BinaryOp::Le: return "<=";
     case BinaryOp::Gt: return ">";
@@ -35,6 +36,18 @@ const char* function_name(Function f) {
     case Function::Floor: return "floor";
     case Function::Sin: return "sin";
     case Function::Cos: return "cos";
+    case Function::Ceil: return "ceil";
+    case Function::Round: return "round";
+    case Function::Tan: return "tan";
+    case Function::Asin: return "asin";
+    case Function::Acos: return "acos";
+    case Function::Atan: return "atan";
+    case Function::Atan2: return "atan2";
+    case Function::Tanh: return "tanh";
+    case Function::Sign: return "sign";
+    case Function::Clamp: return "clamp";
+    case Function::Mod: return "mod";
+    case Function::Cross: return "cross";
   }
   return "?";
 }

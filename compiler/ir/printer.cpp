@@ -64,6 +64,10 @@ std::string to_string(const Expr& e, const Model& model, const std::vector<Label
       auto c = as<FnCall>(e);
       return model.functions[c->fn].name + "(" + join(c->args, model, labels) + ")";
     }
+    case ExprKind::Select: {
+      auto c = as<Select>(e);
+      return "if(" + join({c->condition, c->then, c->otherwise}, model, labels) + ")";
+    }
     case ExprKind::Accumulate: {
       auto a = as<Accumulate>(e);
       const Label& l = labels[a->label];

@@ -22,6 +22,7 @@ void Visitor::visit(const Expr& e) {
     case ExprKind::Accumulate: return visit(*as<Accumulate>(e));
     case ExprKind::FnArg: return visit(*as<FnArg>(e));
     case ExprKind::FnCall: return visit(*as<FnCall>(e));
+    case ExprKind::Select: return visit(*as<Select>(e));
   }
   internal_error("Visitor: unknown expression kind");
 }
@@ -43,6 +44,7 @@ Expr Mutator::mutate(const Expr& e) {
     case ExprKind::Accumulate: return mutate(*as<Accumulate>(e), e);
     case ExprKind::FnArg: return mutate(*as<FnArg>(e), e);
     case ExprKind::FnCall: return mutate(*as<FnCall>(e), e);
+    case ExprKind::Select: return mutate(*as<Select>(e), e);
   }
   internal_error("Mutator: unknown expression kind");
 }
@@ -94,6 +96,12 @@ Expr Mutator::mutate(const Component& n, const Expr& self) {
   Expr v = mutate(n.vec);
   if (v == n.vec) return self;
   return std::make_shared<Component>(v, n.index, n.loc);
+}
+
+Expr Mutator::mutate(const Select& n, const Expr& self) {
+  Expr c = mutate(n.condition), a = mutate(n.then), b = mutate(n.otherwise);
+  if (c == n.condition && a == n.then && b == n.otherwise) return self;
+  return std::make_shared<Select>(n.type, c, a, b, n.loc);
 }
 
 Expr Mutator::mutate(const Accumulate& n, const Expr& self) {

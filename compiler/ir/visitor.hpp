@@ -39,6 +39,11 @@ class Visitor {
     for (const Expr& c : n.components) visit(c);
   }
   virtual void visit(const Component& n) { visit(n.vec); }
+  virtual void visit(const Select& n) {
+    visit(n.condition);
+    visit(n.then);
+    visit(n.otherwise);
+  }
   virtual void visit(const Accumulate& n) {
     visit(n.condition);
     visit(n.body);

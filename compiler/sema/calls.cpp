@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <map>
 
+#include "ir/constant.hpp"
 #include "sema/checker.hpp"
 
 namespace partc::sema {
@@ -13,12 +14,18 @@ struct FunctionInfo {
   int arity;
 };
 const std::map<std::string, FunctionInfo> kFunctions = {
-    {"exp", {ir::Function::Exp, 1}},   {"log", {ir::Function::Log, 1}},
-    {"sqrt", {ir::Function::Sqrt, 1}}, {"pow", {ir::Function::Pow, 2}},
-    {"abs", {ir::Function::Abs, 1}},   {"min", {ir::Function::Min, 2}},
-    {"max", {ir::Function::Max, 2}},   {"dot", {ir::Function::Dot, 2}},
-    {"norm", {ir::Function::Norm, 1}}, {"floor", {ir::Function::Floor, 1}},
-    {"sin", {ir::Function::Sin, 1}},   {"cos", {ir::Function::Cos, 1}},
+    {"exp", {ir::Function::Exp, 1}},     {"log", {ir::Function::Log, 1}},
+    {"sqrt", {ir::Function::Sqrt, 1}},   {"pow", {ir::Function::Pow, 2}},
+    {"abs", {ir::Function::Abs, 1}},     {"min", {ir::Function::Min, 2}},
+    {"max", {ir::Function::Max, 2}},     {"dot", {ir::Function::Dot, 2}},
+    {"norm", {ir::Function::Norm, 1}},   {"floor", {ir::Function::Floor, 1}},
+    {"ceil", {ir::Function::Ceil, 1}},   {"round", {ir::Function::Round, 1}},
+    {"sin", {ir::Function::Sin, 1}},     {"cos", {ir::Function::Cos, 1}},
+    {"tan", {ir::Function::Tan, 1}},     {"asin", {ir::Function::Asin, 1}},
+    {"acos", {ir::Function::Acos, 1}},   {"atan", {ir::Function::Atan, 1}},
+    {"atan2", {ir::Function::Atan2, 2}}, {"tanh", {ir::Function::Tanh, 1}},
+    {"sign", {ir::Function::Sign, 1}},   {"clamp", {ir::Function::Clamp, 3}},
+    {"mod", {ir::Function::Mod, 2}},     {"cross", {ir::Function::Cross, 2}},
 };
 
 const std::map<std::string, ir::Reduction> kReductions = {
@@ -32,7 +39,7 @@ const std::map<std::string, ir::Reduction> kReductions = {
 
 bool Sema::is_builtin_name(const std::string& name) {
   return kFunctions.count(name) || kReductions.count(name) || name == "dx" || name == "vec" ||
-         is_random_function(name);
+         name == "if" || name == "pi" || is_random_function(name);
 }
 
 bool Sema::is_random_function(const std::string& name) {
@@ -50,6 +57,21 @@ Expr Sema::check_call(const ast::Call& n, Scope& scope) {
     fail(ast::location_of(n.args.front()),
          "'in' binds a label only as the first argument of sum, count, min or max");
   if (is_random_function(name)) return check_random(n, scope);
+  // The callee first: a misspelt function must not be reported as its
+  // arguments' unknown label (summ(j, ...)).
+  const auto user = names_.find(name);
+  const bool user_fn = user != names_.end() && user->second.kind == Name::Fn;
+  const auto fn = kFunctions.find(name);
+  if (!user_fn && fn == kFunctions.end() && name != "vec" && name != "if") {
+    if (scope.function && name == scope.function->name)
+      fail(n.callee.loc, "function " + quoted(name) + " calls itself",
+           "functions are not recursive; write the repetition out");
+    std::vector<std::string> known = {"vec",     "if",     "sum",         "count",
+                                      "uniform", "normal", "uniform_vec", "normal_vec"};
+    for (const auto& [k, unused] : kFunctions) known.push_back(k);
+    for (const auto& f : model_.functions) known.push_back(f.name);
+    fail(n.callee.loc, "unknown function " + quoted(name) + suggestion(name, known));
+  }
   std::vector<Expr> args;
   for (const ast::Argument& a : n.args) args.push_back(check(boost::get<ast::Chain>(a), scope));
   if (name == "vec") {
@@ -59,23 +81,11 @@ Expr Sema::check_call(const ast::Call& n, Scope& scope) {
                       std::to_string(args.size()));
     for (std::size_t k = 0; k < args.size(); ++k)
       if (!ir::is_numeric_scalar(args[k]->type))
-        fail(args[k]->loc,
-             "a vec component must be a number, not a " + std::string(type_name(args[k]->type)));
+        fail(args[k]->loc, "a vec component must be a number, not " + a_type(args[k]->type));
     return std::make_shared<ir::MakeVec>(std::move(args), n.loc);
   }
-  if (scope.function && name == scope.function->name)
-    fail(n.callee.loc, "function " + quoted(name) + " calls itself",
-         "functions are not recursive; write the repetition out");
-  if (auto user = names_.find(name); user != names_.end() && user->second.kind == Name::Fn)
-    return check_user_call(n, user->second.index, std::move(args));
-  auto fn = kFunctions.find(name);
-  if (fn == kFunctions.end()) {
-    std::vector<std::string> known = {"vec",    "sum",         "count",     "uniform",
-                                      "normal", "uniform_vec", "normal_vec"};
-    for (const auto& [k, unused] : kFunctions) known.push_back(k);
-    for (const auto& f : model_.functions) known.push_back(f.name);
-    fail(n.callee.loc, "unknown function " + quoted(name) + suggestion(name, known));
-  }
+  if (name == "if") return check_select(n, std::move(args));
+  if (user_fn) return check_user_call(n, user->second.index, std::move(args));
   if (static_cast<int>(args.size()) != fn->second.arity)
     fail(n.loc, name + "() takes " + std::to_string(fn->second.arity) + " argument" +
                     (fn->second.arity == 1 ? "" : "s") + ", not " + std::to_string(args.size()));
@@ -96,7 +106,7 @@ Expr Sema::check_user_call(const ast::Call& n, int index, std::vector<Expr> args
 
 Type Sema::call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args) {
   auto need = [&](std::size_t k, bool ok, const char* what) {
-    if (!ok) fail(args[k]->loc, name + "() needs " + what + ", not a " + type_name(args[k]->type));
+    if (!ok) fail(args[k]->loc, name + "() needs " + what + ", not " + a_type(args[k]->type));
   };
   switch (fn) {
     case ir::Function::Dot:
@@ -107,16 +117,67 @@ Type Sema::call_type(ir::Function fn, const std::string& name, const std::vector
     case ir::Function::Abs:
       need(0, ir::is_numeric_scalar(args[0]->type), "a number (for a vec's length use |v|)");
       return args[0]->type;
+    case ir::Function::Cross:
+      need(0, args[0]->type == Type::Vec, "vecs");
+      need(1, args[1]->type == Type::Vec, "vecs");
+      if (model_.dim != 2 && model_.dim != 3)
+        fail(args[0]->loc,
+             "cross() is defined in 2 and 3 dimensions, not in " + std::to_string(model_.dim));
+      return model_.dim == 3 ? Type::Vec : Type::Real;
+    // Ints stay ints; one real argument makes the result real.
     case ir::Function::Min:
     case ir::Function::Max:
-      need(0, ir::is_numeric_scalar(args[0]->type), "numbers");
-      need(1, ir::is_numeric_scalar(args[1]->type), "numbers");
-      return args[0]->type == Type::Int && args[1]->type == Type::Int ? Type::Int : Type::Real;
+    case ir::Function::Clamp:
+    case ir::Function::Mod:
+    case ir::Function::Sign: {
+      bool ints = true;
+      for (std::size_t k = 0; k < args.size(); ++k) {
+        need(k, ir::is_numeric_scalar(args[k]->type), "numbers");
+        ints = ints && args[k]->type == Type::Int;
+      }
+      if (fn == ir::Function::Mod) no_zero_divisor(args[1], "mod()");
+      return ints ? Type::Int : Type::Real;
+    }
     default:
       for (std::size_t k = 0; k < args.size(); ++k)
         need(k, ir::is_numeric_scalar(args[k]->type), "a number");
       return Type::Real;
   }
+}
+
+// if(c, a, b): branches of one type, or an int and a real (then real).
+Expr Sema::check_select(const ast::Call& n, std::vector<Expr> args) {
+  if (args.size() != 3)
+    fail(n.loc, "if() takes a condition and two values: if(condition, then, otherwise), not " +
+                    std::to_string(args.size()) + " argument" + (args.size() == 1 ? "" : "s"));
+  if (args[0]->type != Type::Bool)
+    fail(args[0]->loc, "the condition of if() must be a bool, not " + a_type(args[0]->type));
+  const Type a = args[1]->type, b = args[2]->type;
+  Type type = a;
+  if (a != b) {
+    if (!ir::is_numeric_scalar(a) || !ir::is_numeric_scalar(b)) {
+      auto zero = [](const Expr& e) {
+        auto lit = ir::as<ir::Literal>(e);
+        return lit && lit->type != Type::Bool && lit->value == 0;
+      };
+      std::string zero_vec = "vec(0";
+      for (int k = 1; k < model_.dim; ++k) zero_vec += ", 0";
+      fail(n.loc, "the branches of if() must have one type, not " + a_type(a) + " and " + a_type(b),
+           (a == Type::Vec && zero(args[2])) || (b == Type::Vec && zero(args[1]))
+               ? "for the zero vector write " + zero_vec + ")"
+               : "");
+    }
+    type = Type::Real;
+  }
+  return std::make_shared<ir::Select>(type, args[0], args[1], args[2], n.loc);
+}
+
+// Integer // and mod by a divisor known to be 0 are mistakes, not the 0
+// they give at run time.
+void Sema::no_zero_divisor(const Expr& divisor, const std::string& what) {
+  if (divisor->type != Type::Int) return;
+  if (auto value = evaluate_constant(divisor, model_); value && *value == 0)
+    fail(divisor->loc, what + " by an int that is always 0");
 }
 
 Expr Sema::check_random(const ast::Call& n, Scope& scope) {
@@ -192,12 +253,12 @@ Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope
     condition = check(argument_chain(n.args[1], name), inner);
     if (condition->type != Type::Bool)
       fail(condition->loc,
-           "the condition of " + name + " must be a bool, not a " + type_name(condition->type));
+           "the condition of " + name + " must be a bool, not " + a_type(condition->type));
   }
   if (reduction != ir::Reduction::Count) {
     body = check(argument_chain(n.args.back(), name), inner);
     if (body->type == Type::Bool || (body->type == Type::Vec && reduction != ir::Reduction::Sum))
-      fail(body->loc, name + " cannot accumulate a " + std::string(type_name(body->type)));
+      fail(body->loc, name + " cannot accumulate " + a_type(body->type));
   }
   const Type type = reduction == ir::Reduction::Count ? Type::Int : body->type;
   return std::make_shared<ir::Accumulate>(type, reduction, label_index, condition, body,

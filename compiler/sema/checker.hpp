@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,11 @@ using ir::Type;
 
 // One user error; caught per declaration and statement so that one bad
 // line does not hide the next.
+// A follow-on error (a use of a name whose declaration failed) is silent:
+// the first error says what is wrong.
 struct SemaError {
   Diagnostic diagnostic;
+  bool follow_on = false;
 };
 
 [[noreturn]] inline void fail(Location loc, std::string message, std::string note = {}) {
@@ -32,6 +36,11 @@ struct SemaError {
 }
 
 inline std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+// "an int", "a real", ...: a type as messages name it.
+inline std::string a_type(ir::Type t) {
+  return std::string(t == ir::Type::Int ? "an " : "a ") + ir::type_name(t);
+}
 
 // "; did you mean 'rc'?" when a known name is close to the unknown one.
 std::string suggestion(const std::string& name, const std::vector<std::string>& known);
@@ -56,6 +65,8 @@ class Sema {
  public:
   explicit Sema(const SourceFile& file) : file_(file) {}
   ir::Model run(const ast::Program& program);
+  // After a run that succeeded: the warnings, in the order found.
+  const std::vector<Diagnostic>& warnings() const { return diagnostics_; }
 
  private:
   template <class F>
@@ -63,8 +74,26 @@ class Sema {
     try {
       f();
     } catch (const SemaError& e) {
-      errors_.push_back(e.diagnostic);
+      if (!e.follow_on) diagnostics_.push_back(e.diagnostic);
     }
+  }
+  // A param, const, function or variable whose declaration fails is
+  // remembered, so that its uses are not reported again as unknown names.
+  template <class F>
+  void poisoned(const ast::Identifier& name, F&& declare_it) {
+    try {
+      declare_it();
+    } catch (const SemaError&) {
+      if (!names_.count(name.name)) failed_names_.insert(name.name);
+      throw;
+    }
+  }
+  // Stops checking what uses a name whose declaration failed.
+  void follow_on_if_failed(const std::string& name) const {
+    if (failed_names_.count(name)) throw SemaError{{}, true};
+  }
+  void warn(Location loc, std::string message, std::string note = {}) {
+    diagnostics_.push_back({loc, std::move(message), std::move(note), true});
   }
 
   // ---- declarations.cpp: model and dim, needed before anything else has a
@@ -87,6 +116,7 @@ class Sema {
   int set_named(const ast::Identifier& name);
   std::vector<std::string> set_names() const;
   ir::Statement check_statement(const ast::Assignment& a, int set_index);
+  void not_assignable(const ast::Identifier& name, const ir::ParticleSet& set);
 
   void check_schedule(const ast::ScheduleItem& item);
   ir::SearchChoice search_choice(const ast::Chain& value);
@@ -100,6 +130,7 @@ class Sema {
   Expr check(const ast::Chain& chain, Scope& scope);
   static ir::BinaryOp binary_op(const std::string& s);
   Expr binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc);
+  void warn_if_raw_displacement(const ir::ExprNode& a, const ir::ExprNode& b, Location loc);
   struct CheckOperand;
   Expr check(const ast::Operand& operand, Scope& scope);
   Expr check_name(const ast::Identifier& n, Scope& scope);
@@ -110,6 +141,8 @@ class Sema {
   static bool is_random_function(const std::string& name);
   Expr check_call(const ast::Call& n, Scope& scope);
   Expr check_user_call(const ast::Call& n, int index, std::vector<Expr> args);
+  Expr check_select(const ast::Call& n, std::vector<Expr> args);
+  void no_zero_divisor(const Expr& divisor, const std::string& what);
   Type call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args);
   Expr check_random(const ast::Call& n, Scope& scope);
   Expr check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope& scope);
@@ -128,7 +161,13 @@ class Sema {
   const SourceFile& file_;
   Location statement_target_;  // of the statement being checked
   ir::Model model_;
-  std::vector<Diagnostic> errors_;
+  std::vector<Diagnostic> diagnostics_;  // errors and warnings, in the order found
+  bool has_errors() const {
+    for (const Diagnostic& d : diagnostics_)
+      if (!d.warning) return true;
+    return false;
+  }
+  std::set<std::string> failed_names_;  // declared with errors: later uses are follow-ons
   std::map<std::string, Location> globals_;
   std::map<std::string, Name> names_;
   std::map<std::string, StatementRef> statement_names_;

@@ -10,17 +10,19 @@ namespace partc::sema {
 ir::Model Sema::run(const ast::Program& program) {
   const ast::DomainDecl& domain = collect_header(program);
   for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
+  // A set is declared even when its count or a variable is wrong (see
+  // declare_set); with none at all, stage blocks have nothing to update.
   // After the consts, which its bounds may name.
   guarded([&] { check_domain(domain); });
-  if (model_.sets.empty() && errors_.empty())
-    errors_.push_back({Location{}, "a model needs at least one particle set",
-                       "declare one with: particles P(N) { v: vec = 0 }"});
+  if (model_.sets.empty() && !has_errors())
+    diagnostics_.push_back({Location{}, "a model needs at least one particle set",
+                            "declare one with: particles P(N) { v: vec = 0 }"});
   for (const ast::Declaration& decl : program.declarations)
     if (auto stage = boost::get<ast::StageBlock>(&decl)) check_stage(*stage);
   for (const ast::Declaration& decl : program.declarations)
     if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
       for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
-  if (!errors_.empty()) throw CompileError(errors_);
+  if (has_errors()) throw CompileError(diagnostics_);
   return std::move(model_);
 }
 
@@ -31,7 +33,7 @@ const ast::DomainDecl& Sema::collect_header(const ast::Program& program) {
   const ast::DomainDecl* domain = nullptr;
   auto once = [&](auto*& seen, const auto& decl, const char* what) {
     if (seen)
-      errors_.push_back(
+      diagnostics_.push_back(
           {decl.loc, std::string("a second ") + what + " declaration",
            "the first is on line " + std::to_string(file_.line_column(seen->loc.begin).line)});
     else
@@ -43,10 +45,10 @@ const ast::DomainDecl& Sema::collect_header(const ast::Program& program) {
     if (auto d = boost::get<ast::DomainDecl>(&decl)) once(domain, *d, "domain");
   }
   const Location start{0, 1};
-  if (!model) errors_.push_back({start, "missing 'model NAME' declaration"});
-  if (!dim) errors_.push_back({start, "missing 'dim N' declaration"});
-  if (!domain) errors_.push_back({start, "missing 'domain lo=(...) hi=(...)' declaration"});
-  if (!errors_.empty()) throw CompileError(errors_);
+  if (!model) diagnostics_.push_back({start, "missing 'model NAME' declaration"});
+  if (!dim) diagnostics_.push_back({start, "missing 'dim N' declaration"});
+  if (!domain) diagnostics_.push_back({start, "missing 'domain lo=(...) hi=(...)' declaration"});
+  if (has_errors()) throw CompileError(diagnostics_);
 
   model_.name = model->name.name;
   model_.dim = static_cast<int>(dim->value.value);
@@ -108,9 +110,9 @@ Type Sema::type_named(const ast::Identifier& name, bool allow_vec) {
 }
 
 void Sema::declare(const ast::Declaration& decl) {
-  if (auto p = boost::get<ast::ParamDecl>(&decl)) declare_param(*p);
-  if (auto c = boost::get<ast::ConstDecl>(&decl)) declare_const(*c);
-  if (auto f = boost::get<ast::FnDecl>(&decl)) declare_fn(*f);
+  if (auto p = boost::get<ast::ParamDecl>(&decl)) poisoned(p->name, [&] { declare_param(*p); });
+  if (auto c = boost::get<ast::ConstDecl>(&decl)) poisoned(c->name, [&] { declare_const(*c); });
+  if (auto f = boost::get<ast::FnDecl>(&decl)) poisoned(f->name, [&] { declare_fn(*f); });
   if (auto s = boost::get<ast::ParticlesDecl>(&decl)) declare_set(*s);
 }
 
@@ -166,33 +168,44 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
   ir::ParticleSet set;
   set.name = decl.name.name;
   set.loc = decl.loc;
-  Scope count_scope;
-  count_scope.context = "a particle count";
-  set.initial_count = convert(check(decl.count, count_scope), Type::Int, decl.count.loc,
-                              "the particle count of " + set.name);
+  // A wrong count is reported, and the set still declared, so that its
+  // statements are checked too.
+  set.initial_count = std::make_shared<ir::Literal>(Type::Int, 0, decl.count.loc);
+  guarded([&] {
+    Scope count_scope;
+    count_scope.context = "a particle count";
+    Expr count = convert(check(decl.count, count_scope), Type::Int, decl.count.loc,
+                         "the particle count of " + set.name);
+    if (auto value = evaluate_constant(count, model_); value && *value < 0)
+      fail(decl.count.loc, "particle set " + quoted(set.name) + " would have " +
+                               std::to_string(static_cast<long long>(*value)) + " particles");
+    set.initial_count = count;
+  });
   set.vars.push_back({"p", Type::Vec, nullptr, true, decl.name.loc});
   set.vars.push_back({"id", Type::Int, nullptr, true, decl.name.loc});
   set.vars.push_back({"alive", Type::Bool, nullptr, true, decl.name.loc});
   const int set_index = static_cast<int>(model_.sets.size());
   for (const ast::VarDecl& var : decl.vars) {
     guarded([&] {
-      if (set.find_var(var.name.name) >= 0)
-        fail(var.name.loc, set.find_var(var.name.name) < ir::kFirstUserVar
-                               ? quoted(var.name.name) + " is a builtin variable of every set"
-                               : "variable " + quoted(var.name.name) + " declared twice");
-      if (names_.count(var.name.name) || is_builtin_name(var.name.name))
-        fail(var.name.loc, "variable " + quoted(var.name.name) +
-                               " has the name of a param, const, set or builtin");
-      const Type type = type_named(var.type, true);
-      Expr initial;
-      if (var.value) {
-        Scope scope;
-        scope.where = Scope::Where::Initialiser;
-        scope.context = "an initial value";
-        initial =
-            convert(check(*var.value, scope), type, var.value->loc, "variable " + var.name.name);
-      }
-      set.vars.push_back({var.name.name, type, initial, false, var.loc});
+      poisoned(var.name, [&] {
+        if (set.find_var(var.name.name) >= 0)
+          fail(var.name.loc, set.find_var(var.name.name) < ir::kFirstUserVar
+                                 ? quoted(var.name.name) + " is a builtin variable of every set"
+                                 : "variable " + quoted(var.name.name) + " declared twice");
+        if (names_.count(var.name.name) || is_builtin_name(var.name.name))
+          fail(var.name.loc, "variable " + quoted(var.name.name) +
+                                 " has the name of a param, const, set or builtin");
+        const Type type = type_named(var.type, true);
+        Expr initial;
+        if (var.value) {
+          Scope scope;
+          scope.where = Scope::Where::Initialiser;
+          scope.context = "an initial value";
+          initial =
+              convert(check(*var.value, scope), type, var.value->loc, "variable " + var.name.name);
+        }
+        set.vars.push_back({var.name.name, type, initial, false, var.loc});
+      });
     });
   }
   model_.sets.push_back(std::move(set));

@@ -14,24 +14,35 @@ Expr Sema::convert(Expr value, Type to, Location at, const std::string& what) {
   if (from == to) return value;
   if (from == Type::Int && to == Type::Real) return value;  // C++ promotes
   if (to == Type::Vec && ir::is_numeric_scalar(from)) {
-    if (is_uniform(value)) {
+    // Only 0 means the same in every dimension; `v[i] -= dt * g` must not
+    // become gravity along the diagonal.
+    if (auto lit = ir::as<ir::Literal>(value); lit && lit->value == 0) {
       std::vector<Expr> components(model_.dim, value);
       return std::make_shared<ir::MakeVec>(std::move(components), value->loc);
     }
-    fail(at, "cannot store a " + std::string(type_name(from)) + " in " + what + ", which is a vec",
-         "a vec needs " + std::to_string(model_.dim) +
-             " components: write vec(...), or a vector expression");
+    const std::string text = source_text(value->loc);
+    const std::string factor = ir::as<ir::Binary>(value) ? "(" + text + ")" : text;
+    auto components = [&](const std::string& first, const std::string& last) {
+      std::string out = "vec(";
+      for (int k = 0; k + 1 < model_.dim; ++k) out += first + ", ";
+      return out + last + ")";
+    };
+    fail(at, "cannot store " + a_type(from) + " in " + what + ", which is a vec",
+         "a scalar is not spread over the components: write " + components("0", text) +
+             " for a vector along one axis, or " + factor + " * " + components("1", "1") +
+             " for the same value in each");
   }
   if (from == Type::Real && to == Type::Int)
     fail(at, "cannot store a real in " + what + ", which is an int",
-         "int values are exact; round explicitly, e.g. with floor(), into a real variable");
-  fail(at, "cannot store a " + std::string(type_name(from)) + " in " + what + ", which is a " +
-               type_name(to));
+         ir::as<ir::Binary>(value) && ir::as<ir::Binary>(value)->op == ir::BinaryOp::Div
+             ? "'/' always gives a real; a // b divides ints, rounding down"
+             : "int values are exact: write an int, or divide ints with // (rounding down)");
+  fail(at, "cannot store " + a_type(from) + " in " + what + ", which is " + a_type(to));
 }
 
 double Sema::constant_number(const Expr& e, Location at, const Scope& scope) {
   if (!ir::is_numeric_scalar(e->type) && e->type != Type::Bool)
-    fail(at, scope.context + " must be a number, not a " + type_name(e->type));
+    fail(at, scope.context + " must be a number, not " + a_type(e->type));
   auto value = evaluate_constant(e, model_);
   if (!value)
     fail(at, scope.context + " must be known when partc runs",
@@ -58,20 +69,40 @@ Expr Sema::check(const ast::Chain& chain, Scope& scope) {
 
 ir::BinaryOp Sema::binary_op(const std::string& s) {
   static const std::map<std::string, ir::BinaryOp> ops = {
-      {"+", ir::BinaryOp::Add}, {"-", ir::BinaryOp::Sub},   {"*", ir::BinaryOp::Mul},
-      {"/", ir::BinaryOp::Div}, {"<", ir::BinaryOp::Lt},    {"<=", ir::BinaryOp::Le},
-      {">", ir::BinaryOp::Gt},  {">=", ir::BinaryOp::Ge},   {"==", ir::BinaryOp::Eq},
-      {"!=", ir::BinaryOp::Ne}, {"and", ir::BinaryOp::And}, {"or", ir::BinaryOp::Or}};
+      {"+", ir::BinaryOp::Add}, {"-", ir::BinaryOp::Sub},       {"*", ir::BinaryOp::Mul},
+      {"/", ir::BinaryOp::Div}, {"//", ir::BinaryOp::FloorDiv}, {"<", ir::BinaryOp::Lt},
+      {"<=", ir::BinaryOp::Le}, {">", ir::BinaryOp::Gt},        {">=", ir::BinaryOp::Ge},
+      {"==", ir::BinaryOp::Eq}, {"!=", ir::BinaryOp::Ne},       {"and", ir::BinaryOp::And},
+      {"or", ir::BinaryOp::Or}};
   return ops.at(s);
+}
+
+// p[j] - p[i] in a periodic domain is not the shortest vector between the
+// two particles, and a condition on it bounds no neighbourhood: partc then
+// loops over every particle. dx is what the author almost surely meant.
+void Sema::warn_if_raw_displacement(const ir::ExprNode& a, const ir::ExprNode& b, Location loc) {
+  auto position = [](const ir::ExprNode& e) {
+    return e.kind == ir::ExprKind::VarRef && static_cast<const ir::VarRef&>(e).var == ir::kPosition
+               ? &static_cast<const ir::VarRef&>(e)
+               : nullptr;
+  };
+  const ir::VarRef *pa = position(a), *pb = position(b);
+  if (!pa || !pb || pa->label == pb->label) return;
+  const auto& periodic = model_.domain.periodic;
+  if (std::find(periodic.begin(), periodic.end(), true) == periodic.end()) return;
+  warn(loc, source_text(loc) + " ignores the periodic boundaries",
+       "dx is the shortest vector from i to j, across periodic boundaries; a condition on |dx| "
+       "also lets partc search only nearby particles");
 }
 
 Expr Sema::binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc) {
   const Type ta = a->type, tb = b->type;
   const std::string spelled = binary_op_spelling(op);
   auto mismatch = [&](std::string note = {}) -> Expr {
-    fail(op_loc, "'" + spelled + "' cannot combine a " + type_name(ta) + " and a " + type_name(tb),
+    fail(op_loc, "'" + spelled + "' cannot combine " + a_type(ta) + " and " + a_type(tb),
          std::move(note));
   };
+  if (op == ir::BinaryOp::Sub) warn_if_raw_displacement(*a, *b, loc);
   const bool scalars = ir::is_numeric_scalar(ta) && ir::is_numeric_scalar(tb);
   const Type numeric = ta == Type::Int && tb == Type::Int ? Type::Int : Type::Real;
   Type result = Type::Bool;
@@ -95,6 +126,12 @@ Expr Sema::binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc
         return mismatch("for the inner product write dot(a, b)");
       else
         return mismatch();
+      break;
+    case ir::BinaryOp::FloorDiv:
+      if (ta != Type::Int || tb != Type::Int)
+        return mismatch("'//' divides ints, rounding down; for reals write floor(a / b)");
+      no_zero_divisor(b, "'//'");
+      result = Type::Int;
       break;
     case ir::BinaryOp::Div:
       // int / int is real division: 3 / N must not silently truncate to 0.
@@ -156,8 +193,7 @@ struct Sema::CheckOperand {
   Expr operator()(const ast::Unary& n) const {
     Expr a = sema.check(n.operand, scope);
     if (n.op == "not") {
-      if (a->type != Type::Bool)
-        fail(n.loc, "'not' needs a bool, not a " + std::string(type_name(a->type)));
+      if (a->type != Type::Bool) fail(n.loc, "'not' needs a bool, not " + a_type(a->type));
       return std::make_shared<ir::Unary>(Type::Bool, ir::UnaryOp::Not, a, n.loc);
     }
     if (a->type == Type::Bool) fail(n.loc, "'" + n.op + "' needs a number or a vec, not a bool");
@@ -167,8 +203,7 @@ struct Sema::CheckOperand {
   Expr operator()(const ast::Postfix& n) const {
     Expr e = sema.check(n.base, scope);
     for (const ast::Identifier& c : n.components) {
-      if (e->type != Type::Vec)
-        fail(c.loc, "." + c.name + " needs a vec, not a " + type_name(e->type));
+      if (e->type != Type::Vec) fail(c.loc, "." + c.name + " needs a vec, not " + a_type(e->type));
       const auto* it =
           std::find(std::begin(kAxisNames), std::begin(kAxisNames) + sema.model_.dim, c.name);
       if (it == std::begin(kAxisNames) + sema.model_.dim)
@@ -191,6 +226,7 @@ Expr Sema::check(const ast::Operand& operand, Scope& scope) {
 }
 
 Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
+  if (n.name == "pi") return std::make_shared<ir::Literal>(Type::Real, M_PI, n.loc);
   if (n.name == "dx") {
     if (!scope.in_accumulation)
       fail(n.loc, "dx is only defined inside an accumulation",
@@ -231,6 +267,7 @@ Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
         fail(n.loc, quoted(n.name) + " is a particle variable; index it with a label, as in " +
                         n.name + "[" + scope.labels->front().name + "]");
   }
+  follow_on_if_failed(n.name);
   std::vector<std::string> known;
   for (const auto& [name, unused] : names_) known.push_back(name);
   fail(n.loc, "unknown name " + quoted(n.name) + suggestion(n.name, known));
@@ -262,6 +299,7 @@ Expr Sema::check_indexed(const ast::Indexed& n, Scope& scope) {
   const int set_index = (*scope.labels)[label].set;
   const ir::ParticleSet& set = model_.sets[set_index];
   const int var = set.find_var(n.var.name);
+  if (var < 0) follow_on_if_failed(n.var.name);
   if (var < 0)
     fail(n.var.loc, quoted(n.var.name) + " is not a variable of particle set " + set.name +
                         suggestion(n.var.name, var_names(set)));

@@ -4,8 +4,12 @@
 
 namespace partc {
 
-ir::Model build_ir(const ast::Program& program, const SourceFile& file) {
-  return sema::Sema(file).run(program);
+ir::Model build_ir(const ast::Program& program, const SourceFile& file,
+                   std::vector<Diagnostic>& warnings) {
+  sema::Sema sema(file);
+  ir::Model model = sema.run(program);
+  warnings = sema.warnings();
+  return model;
 }
 
 }  // namespace partc

@@ -9,11 +9,14 @@
 
 #include "ast/ast.hpp"
 #include "ir/ir.hpp"
+#include "support/diagnostics.hpp"
 #include "support/source.hpp"
 
 namespace partc {
 
-// Throws CompileError with every problem found.
-ir::Model build_ir(const ast::Program& program, const SourceFile& file);
+// Throws CompileError with every problem found; appends warnings (likely
+// mistakes that still mean something) to `warnings`.
+ir::Model build_ir(const ast::Program& program, const SourceFile& file,
+                   std::vector<Diagnostic>& warnings);
 
 }  // namespace partc

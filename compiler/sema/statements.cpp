@@ -14,7 +14,7 @@ void Sema::check_stage(const ast::StageBlock& block) {
   try {
     stage.set = resolve_stage_set(block);
   } catch (const SemaError& e) {
-    errors_.push_back(e.diagnostic);
+    if (!e.follow_on) diagnostics_.push_back(e.diagnostic);
     return;
   }
   const int stage_index = static_cast<int>(model_.stages.size());
@@ -36,6 +36,7 @@ void Sema::check_stage(const ast::StageBlock& block) {
 
 int Sema::resolve_stage_set(const ast::StageBlock& block) {
   if (block.set) return set_named(*block.set);
+  if (model_.sets.empty()) throw SemaError{{}, true};  // "a model needs a set" says it
   if (model_.sets.size() != 1)
     fail(block.loc, "this model has several particle sets: name the one this " + block.kind +
                         " block updates, as in '" + block.kind + " " + model_.sets[0].name +
@@ -57,6 +58,29 @@ std::vector<std::string> Sema::set_names() const {
   return out;
 }
 
+// Why a statement cannot assign `name` when it is not a variable of `set`,
+// if the name means something else; returns when it means nothing.
+void Sema::not_assignable(const ast::Identifier& name, const ir::ParticleSet& set) {
+  follow_on_if_failed(name.name);
+  const auto it = names_.find(name.name);
+  const std::string kept_per_particle =
+      "a value that changes during a run is a particle variable: declare it in particles " +
+      set.name + " { " + name.name + ": real = ... }";
+  if (it != names_.end() && it->second.kind == Name::Param)
+    fail(name.loc,
+         quoted(name.name) + " is a param: it is set before the run (--set " + name.name +
+             "=...), not by statements",
+         kept_per_particle);
+  if (it != names_.end() && it->second.kind == Name::Const)
+    fail(name.loc, quoted(name.name) + " is a const and cannot be assigned", kept_per_particle);
+  for (const ir::ParticleSet& other : model_.sets)
+    if (&other != &set && other.find_var(name.name) >= 0)
+      fail(name.loc,
+           quoted(name.name) + " is a variable of particle set " + other.name + ", not " + set.name,
+           "a block updates one set: write this in a block of its own, as in 'step " + other.name +
+               " { ... }'");
+}
+
 ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
   const ir::ParticleSet& set = model_.sets[set_index];
   ir::Statement st;
@@ -64,6 +88,7 @@ ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
   st.loc = a.loc;
   st.line = file_.line_column(a.loc.begin).line;
   st.var = set.find_var(a.target.var.name);
+  if (st.var < 0) not_assignable(a.target.var, set);
   if (st.var < 0)
     fail(a.target.var.loc, quoted(a.target.var.name) + " is not a variable of particle set " +
                                set.name + suggestion(a.target.var.name, var_names(set)));
@@ -138,8 +163,7 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       scope.context = "a skin";
       Expr skin = check(option.value, scope);
       if (!ir::is_numeric_scalar(skin->type))
-        fail(option.value.loc,
-             "the skin must be a number, not a " + std::string(type_name(skin->type)));
+        fail(option.value.loc, "the skin must be a number, not " + a_type(skin->type));
       if (auto value = evaluate_constant(skin, model_); value && !(*value >= 0))
         fail(option.value.loc, "the skin must not be negative");
       st.schedule.skin = skin;

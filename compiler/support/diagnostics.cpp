@@ -9,7 +9,7 @@ void internal_error(const std::string& what) { throw InternalError(what); }
 std::string format_diagnostic(const SourceFile& file, const Diagnostic& d) {
   const LineColumn at = file.line_column(d.loc.begin);
   std::string out = file.path() + ":" + std::to_string(at.line) + ":" +
-                    std::to_string(at.column) + ": error: " + d.message + "\n";
+                    std::to_string(at.column) + (d.warning ? ": warning: " : ": error: ") + d.message + "\n";
   const std::string_view line = file.line_text(at.line);
   out += "  ";
   out += line;

@@ -18,9 +18,11 @@ struct Diagnostic {
   Location loc;
   std::string message;
   std::string note = {};  // optional extra line ("note: ...") printed after the caret
+  bool warning = false;   // a likely mistake that still compiles
 };
 
-// Thrown to abandon compilation after one or more diagnostics.
+// Thrown to abandon compilation after one or more errors (the diagnostics
+// may hold warnings too, in the order they were found).
 class CompileError : public std::exception {
  public:
   explicit CompileError(std::vector<Diagnostic> diagnostics)
@@ -44,7 +46,7 @@ class InternalError : public std::logic_error {
     if (!(cond)) ::partc::internal_error(__FILE__ ":" + std::to_string(__LINE__) + ": " #cond); \
   } while (0)
 
-// "file:line:col: error: message", the source line, and a caret line.
+// "file:line:col: error: message" (or "warning:"), the source line, and a caret line.
 std::string format_diagnostic(const SourceFile& file, const Diagnostic& d);
 
 }  // namespace partc

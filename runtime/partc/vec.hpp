@@ -77,6 +77,13 @@ double squared_norm(const Vec<D>& a) { return dot(a, a); }
 template <int D>
 double norm(const Vec<D>& a) { return std::sqrt(squared_norm(a)); }
 
+// The cross product in 3D; in 2D the z-component of the 3D cross product of
+// (a, 0) and (b, 0), a scalar (a torque, a signed area).
+inline Vec<3> cross(const Vec<3>& a, const Vec<3>& b) {
+  return Vec<3>{{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+}
+inline double cross(const Vec<2>& a, const Vec<2>& b) { return a[0] * b[1] - a[1] * b[0]; }
+
 // lo <= a <= hi componentwise (false if any of them is NaN).
 template <int D>
 bool inside(const Vec<D>& a, const Vec<D>& lo, const Vec<D>& hi) {

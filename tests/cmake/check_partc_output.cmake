@@ -6,6 +6,7 @@
 # MODE=cpp: partc must succeed; the emitted C++ must equal EXPECTED.
 # MODE=diagnostic: partc must fail with exit status 1, write no output file,
 #   and print exactly EXPECTED on stderr.
+# MODE=warning: partc must succeed and print exactly EXPECTED on stderr.
 # With the environment variable PARTC_UPDATE_GOLDEN=1 the golden file is
 # rewritten from what partc printed (then review the diff before committing).
 get_filename_component(dir ${PART} DIRECTORY)
@@ -25,6 +26,11 @@ if(MODE STREQUAL "diagnostic")
   endif()
   if(EXISTS ${out})
     message(FATAL_ERROR "partc ${name}: failed but left an output file behind")
+  endif()
+  set(actual "${stderr}")
+elseif(MODE STREQUAL "warning")
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "partc ${name}: failed with status ${status}\n${stderr}")
   endif()
   set(actual "${stderr}")
 else()

@@ -109,6 +109,8 @@ TEST_CASE("symmetry: odd terms under an even condition take each pair once", "[a
   CHECK(newton_sign("f[i] = sum(j, |dx| < rc, v[j] - v[i])") == -1);
   CHECK(newton_sign("f[i] = sum(j, |dx| < rc, vec(dx.y, -dx.x) * W(|dx|))") == -1);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, sin(dx.x))") == -1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, tanh(dx.y) * sign(dx.x) * atan(dx.x))") == -1);
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc, if(|dx| < rc / 2, dx, -2 * dx))") == -1);
 }
 
 TEST_CASE("symmetry: even terms under an even condition take each pair once", "[analysis]") {
@@ -121,6 +123,8 @@ TEST_CASE("symmetry: even terms under an even condition take each pair once", "[
   CHECK(newton_sign("u[i] = sum(j, m[i] + m[j])") == 1);  // no condition: every pair
   CHECK(newton_sign("n[i] = count(j, |dx| < r[i] + r[j])") == 1);
   CHECK(newton_sign("n[i] = count(j, |dx| < rc and id[j] != id[i])") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, cross(dx, v[i] - v[j]))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(m[i] + m[j] > 1, exp(-|dx|), 0))") == 1);
 }
 
 TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
@@ -134,6 +138,9 @@ TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
   CHECK(newton_sign("u[i] = sum(j, dx.x > 0 and |dx| < 1, 1.0)") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc and dx.x == 0.5, 1.0)") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, lj_force(dx.x))") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(dx.x > 0, 1, -1))") == 0);  // condition odd
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(|dx| < 0.05, dx.x, 1))") == 0);  // odd, even
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, mod(dx.x, 0.1))") == 0);
   // Not a sum, or not over i's own set.
   CHECK(newton_sign("u[i] = min(j, |dx| < rc, |dx|)") == 0);
   CHECK(newton_sign("u[i] = max(j, |dx| < rc, m[i] * m[j])") == 0);

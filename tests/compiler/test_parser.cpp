@@ -87,7 +87,7 @@ TEST_CASE("diagnostics name the problem and its place", "[sema]") {
   CHECK(first_error(h + "step {\n  m[i] = v[i]\n}\n").message ==
         "cannot store a vec in variable m, which is a real");
   CHECK(first_error(h + "step {\n  v[i] += dot(v[i], 1)\n}\n").message ==
-        "dot() needs vecs, not a int");
+        "dot() needs vecs, not an int");
   CHECK(first_error(h + "init {\n  m[i] = sum(j, |dx| < 1, uniform())\n}\n").message ==
         "random numbers inside an accumulation are not supported");
   CHECK(first_error("model m\ndim 5\n").message == "missing 'domain lo=(...) hi=(...)' declaration");
