@@ -13,8 +13,9 @@
 // - Numbers are written in the shortest form that reads back to the same
 //   double ("0.1", not "0.10000000000000001"): a round trip is exact.
 // - Writers go through path + ".tmp" and a rename, so a failure or a crash
-//   never leaves a half-written file under the real name. vtk.hpp shares these
-//   helpers (partc::detail) rather than keep a twin copy.
+//   never leaves a half-written file under the real name (output_file.hpp;
+//   a link, a pipe or a device such as /dev/stdout is written in place).
+//   vtk.hpp shares these helpers (partc::detail) rather than keep a twin copy.
 #pragma once
 
 #include <algorithm>
@@ -23,7 +24,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +39,7 @@
 
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
+#include "partc/output_file.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -347,26 +348,6 @@ std::vector<std::size_t> id_order(const Set& set) {
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
   return order;
-}
-
-// Calls write(std::ostream&) on path + ".tmp", then renames it to path.
-template <class Write>
-void write_file_atomically(const std::string& path, Write&& write) {
-  const std::string temporary = path + ".tmp";
-  try {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error("cannot create '" + temporary + "': " + std::strerror(errno));
-    write(out);
-    out.close();
-    if (!out) throw std::runtime_error("cannot write '" + temporary + "': " + std::strerror(errno));
-    if (std::rename(temporary.c_str(), path.c_str()) != 0)
-      throw std::runtime_error("cannot rename '" + temporary + "' to '" + path +
-                               "': " + std::strerror(errno));
-  } catch (...) {
-    std::remove(temporary.c_str());
-    throw;
-  }
 }
 
 }  // namespace detail

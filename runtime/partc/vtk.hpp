@@ -29,8 +29,9 @@
 #include <utility>
 #include <vector>
 
-#include "partc/csv.hpp"  // detail::id_order, append_number, write_file_atomically
+#include "partc/csv.hpp"  // detail::id_order, append_number
 #include "partc/finite.hpp"
+#include "partc/output_file.hpp"
 
 namespace partc {
 
