@@ -3,11 +3,12 @@
 //   InputError      a bad data file; what() is a complete compiler-style message,
 //                   "file:line:col: error: ...", then the offending line and a caret.
 //   UsageError      a bad command-line argument or parameter value.
-//   NumericalError  a NaN or Inf in a particle variable, with where and when.
+//   NumericalError  a NaN or Inf in a particle variable, with where and when;
+//                   or a failed linear solve (solve/), with the solve's own text.
 //
-// The driver maps them to exit codes 1, 2 and 3. Surprise: NumericalError's
-// message ends with the set name in parentheses, because two sets may both have
-// a variable 'v'.
+// The driver maps them to exit codes 1, 2 and 3. Surprise: a particle
+// variable's NumericalError message ends with the set name in parentheses,
+// because two sets may both have a variable 'v'.
 #pragma once
 
 #include <cmath>
@@ -54,6 +55,12 @@ struct NumericalError : std::runtime_error {
         id(particle_id),
         step(at_step),
         value(bad_value) {}
+
+  // A failure that is not one particle's value, such as a solve's NaN matrix
+  // entry or its iterative method's non-convergence: the message says it all,
+  // set and variable are empty, id and step -1, value NaN.
+  explicit NumericalError(const std::string& message)
+      : std::runtime_error(message), id(-1), step(-1), value(std::nan("")) {}
 
   std::string set;
   std::string variable;
