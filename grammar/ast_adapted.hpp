@@ -8,6 +8,7 @@
 #include "ast/ast.hpp"
 
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::Indexed, var, label)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::Target, var, label)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::BinaryOp, op, rhs)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::Chain, first, rest)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::Unary, op, operand)
@@ -20,6 +21,8 @@ BOOST_FUSION_ADAPT_STRUCT(partc::ast::ScheduleItem, statement, options)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::DomainDecl, lo, hi, periodic)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::ParamDecl, name, type, value)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::ConstDecl, name, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::ObservableDecl, name, type, value)
+BOOST_FUSION_ADAPT_STRUCT(partc::ast::OutputDecl, names, every)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::VarDecl, name, type, value)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::FnParam, name, type)
 BOOST_FUSION_ADAPT_STRUCT(partc::ast::FnDecl, name, params, value)

@@ -155,6 +155,11 @@ struct domain_decl_id : locate {};
 struct tuple_id : locate {};
 struct param_decl_id : locate {};
 struct const_decl_id : locate {};
+struct observable_decl_id : locate {};
+struct timestep_decl_id : locate {};
+struct output_decl_id : locate {};
+struct target_id : locate {};
+struct step_number_id : locate {};
 struct var_decl_id : locate {};
 struct fn_decl_id : locate {};
 struct schedule_block_id : locate {};
@@ -208,6 +213,15 @@ x3::rule<domain_decl_id, ast::DomainDecl> const domain_decl = "a domain declarat
 x3::rule<tuple_id, std::vector<ast::Chain>> const tuple = "a tuple like (0, 0)";
 x3::rule<param_decl_id, ast::ParamDecl> const param_decl = "a param declaration";
 x3::rule<const_decl_id, ast::ConstDecl> const const_decl = "a const declaration";
+x3::rule<observable_decl_id, ast::ObservableDecl> const observable_decl =
+    "an observable declaration";
+x3::rule<timestep_decl_id, ast::TimestepDecl> const timestep_decl = "a timestep declaration";
+x3::rule<class timestep_decl_text_id, ast::TimestepDecl> const timestep_decl_text =
+    "a timestep declaration";
+x3::rule<output_decl_id, ast::OutputDecl> const output_decl = "an output declaration";
+x3::rule<target_id, ast::Target> const target = "a variable like v[i], or an observable";
+x3::rule<step_number_id, ast::Identifier> const step_number = "step";
+x3::rule<class step_number_text_id, ast::Identifier> const step_number_text = "step";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
 x3::rule<fn_decl_id, ast::FnDecl> const fn_decl = "a function declaration";
 x3::rule<schedule_block_id, ast::ScheduleBlock> const schedule_block = "a schedule block";
@@ -226,7 +240,8 @@ x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
 x3::rule<end_of_vars_id> const end_of_vars = "a variable declaration like v: vec = 0, or '}'";
 x3::rule<end_of_input_id> const end_of_input =
-    "a declaration (model, dim, domain, param, const, fn, particles, init, step or schedule)";
+    "a declaration (model, dim, domain, param, const, observable, timestep, output, fn, "
+    "particles, init, step or schedule)";
 
 // Semantic actions fill single-member nodes. X3 calls no on_success for a
 // rule whose definition holds an action, so each such rule (`*_text`) is
@@ -262,11 +277,12 @@ auto const set_model_name = [](auto& ctx) {
 auto const set_dim_value = [](auto& ctx) {
   _val(ctx).value = std::move(_attr(ctx));
 };
+auto const set_step_name = [](auto& ctx) { _val(ctx).name = "step"; };
 
 x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
-  s.add("model")("dim")("domain")("param")("const")("fn")("particles")("schedule")("init")("step")("and")("or")(
-      "not")("true")("false")("in");
+  s.add("model")("dim")("domain")("param")("const")("observable")("timestep")("output")("every")(
+      "fn")("particles")("schedule")("init")("step")("and")("or")("not")("true")("false")("in");
   return s;
 }();
 auto const word_char = alnum | char_('_');
@@ -330,9 +346,13 @@ auto const negation_def = (x3::string("-") | x3::string("+")) > unary;
 auto const postfix_def = primary >> *('.' > identifier);
 
 // primary = real_literal | int_literal | bool_literal | norm | call
-//         | indexed | identifier | "(" , expression , ")" ;
+//         | indexed | identifier | step_number | "(" , expression , ")" ;
 auto const primary_def = real_literal | int_literal | bool_literal | norm | call | indexed |
-                         identifier | ('(' > expression > ')');
+                         identifier | step_number | ('(' > expression > ')');
+
+// step_number = "step" ;  (the keyword, read as the number of steps taken)
+auto const step_number_def = step_number_text;
+auto const step_number_text_def = keyword("step")[set_step_name];
 
 // norm = "|" , expression , "|" ;
 auto const norm_def = norm_text;
@@ -347,7 +367,8 @@ auto const argument_def = label_binding | expression;
 // label_binding = identifier , "in" , identifier ;
 auto const label_binding_def = identifier >> keyword("in") > identifier;
 
-// assignment = [ identifier , ":" ] , indexed , assign_op , expression , [ ";" ] ;
+// assignment = [ identifier , ":" ] , target , assign_op , expression , [ ";" ] ;
+// target     = identifier , [ "[" , identifier , "]" ] ;
 // assign_op  = "=" | "+=" | "-=" | "*=" | "/=" ;
 auto const assign_op = x3::rule<class assign_op_id, std::string>{"'=', '+=', '-=', '*=' or '/='"} =
     x3::string("+=") | x3::string("-=") | x3::string("*=") | x3::string("/=") |
@@ -355,7 +376,8 @@ auto const assign_op = x3::rule<class assign_op_id, std::string>{"'=', '+=', '-=
 // The lookahead (&) commits to a name only when a ':' follows: X3 would
 // otherwise keep the half-parsed name of `v[i]` in the optional.
 auto const statement_name = &(identifier >> ':') >> identifier >> ':';
-auto const assignment_def = -statement_name >> indexed > assign_op > expression > -lit(';');
+auto const assignment_def = -statement_name >> target > assign_op > expression > -lit(';');
+auto const target_def = identifier >> -('[' > identifier > ']');
 
 // model_decl = "model" , identifier ;
 auto const model_decl_def = model_decl_text;
@@ -379,6 +401,19 @@ auto const param_decl_def = keyword("param") > identifier > ':' > identifier > '
 
 // const_decl = "const" , identifier , "=" , expression ;
 auto const const_decl_def = keyword("const") > identifier > '=' > expression;
+
+// observable_decl = "observable" , identifier , ":" , identifier , "=" , expression ;
+auto const observable_decl_def = keyword("observable") > identifier > ':' > identifier > '=' >
+                                 expression;
+
+// timestep_decl = "timestep" , "=" , expression ;
+auto const set_timestep = [](auto& ctx) { _val(ctx).value = std::move(_attr(ctx)); };
+auto const timestep_decl_def = timestep_decl_text;
+auto const timestep_decl_text_def = (keyword("timestep") > '=' > expression)[set_timestep];
+
+// output_decl = "output" , identifier , { "," , identifier } , [ "every" , expression ] ;
+auto const output_decl_def = keyword("output") > (identifier % ',') >
+                             -(keyword("every") > expression);
 
 // fn_decl = "fn" , identifier , "(" , [ fn_param , { "," , fn_param } ] , ")" ,
 //           "=" , expression ;
@@ -412,9 +447,11 @@ auto const schedule_item_def = identifier > ':' > (schedule_option % ',');
 auto const schedule_option_def = identifier > '=' > expression;
 
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
+//             | observable_decl | timestep_decl | output_decl
 //             | fn_decl | particles_decl | stage_block | schedule_block ;
 auto const declaration_def = model_decl | dim_decl | domain_decl | param_decl | const_decl |
-                             fn_decl | particles_decl | stage_block | schedule_block;
+                             observable_decl | timestep_decl | output_decl | fn_decl |
+                             particles_decl | stage_block | schedule_block;
 
 // program = { declaration } ;
 auto const program_def = *declaration > end_of_input;
@@ -426,7 +463,9 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     or_tail, and_expr, and_tail, not_expr, not_op, comparison, compare_tail,
                     additive, additive_tail, multiplicative, multiplicative_tail, unary, negation,
                     postfix, primary, norm, call, argument, label_binding, assignment, model_decl,
-                    dim_decl, domain_decl, tuple, param_decl, const_decl, fn_decl, fn_param, schedule_block,
+                    dim_decl, domain_decl, tuple, param_decl, const_decl, observable_decl,
+                    timestep_decl, timestep_decl_text, output_decl, target, step_number,
+                    step_number_text, fn_decl, fn_param, schedule_block,
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
 

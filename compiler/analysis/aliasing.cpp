@@ -21,7 +21,7 @@ class FindsOtherParticleReads : public ir::Visitor {
  public:
   FindsOtherParticleReads(const ir::Statement& st, const UniformSumReport& uniform_sums)
       : st_(st), uniform_sums_(uniform_sums) {}
-  std::string found;  // the offending read, spelled as in .part
+  std::string found;                 // the offending read, spelled as in .part
   bool read_in_uniform_sum = false;  // such a read, but in a sum computed once: harmless
 
  public:
@@ -33,8 +33,7 @@ class FindsOtherParticleReads : public ir::Visitor {
       found = st_.labels[n.label].name;
   }
   void visit(const ir::Dx& n) override {
-    if (st_.var == ir::kPosition && st_.labels[n.to].set == st_.set && found.empty())
-      found = "dx";
+    if (st_.var == ir::kPosition && st_.labels[n.to].set == st_.set && found.empty()) found = "dx";
   }
   void visit(const ir::Accumulate& n) override {
     if (!uniform_sums_.at(n.id).once) return ir::Visitor::visit(n);
@@ -56,6 +55,11 @@ AliasReport detect_aliasing(const ir::Model& model, const UniformSumReport& unif
   for (const ir::Stage& stage : model.stages) {
     auto& facts = report.emplace_back();
     for (const ir::Statement& st : stage.statements) {
+      if (st.observable >= 0) {
+        facts.push_back({false, "observable " + model.observables[st.observable].name +
+                                    ": one value, computed once"});
+        continue;
+      }
       FindsOtherParticleReads finder(st, uniform_sums);
       finder.visit(st.value);
       AliasFact fact;
@@ -68,10 +72,9 @@ AliasReport detect_aliasing(const ir::Model& model, const UniformSumReport& unif
                       ": updated in place";
       } else {
         fact.buffered = true;
-        fact.reason = finder.found == "dx"
-                          ? "writes p while dx reads other particles' p: buffered"
-                          : "writes " + var + " while reading " + var + "[" + finder.found +
-                                "]: buffered";
+        fact.reason = finder.found == "dx" ? "writes p while dx reads other particles' p: buffered"
+                                           : "writes " + var + " while reading " + var + "[" +
+                                                 finder.found + "]: buffered";
       }
       facts.push_back(std::move(fact));
     }

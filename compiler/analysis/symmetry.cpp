@@ -63,7 +63,8 @@ class PairExchange {
     switch (e->kind) {
       case ir::ExprKind::Literal:
       case ir::ExprKind::ParamRef:
-      case ir::ExprKind::ConstRef: return Parity::Even;
+      case ir::ExprKind::ConstRef:
+      case ir::ExprKind::ObservableRef: return Parity::Even;
       case ir::ExprKind::Dx: return Parity::Odd;
       case ir::ExprKind::VarRef:
         return neither(e);  // one particle's value, unless twinned above
@@ -176,6 +177,8 @@ class PairExchange {
         return ir::as<ir::ParamRef>(a)->param == ir::as<ir::ParamRef>(b)->param;
       case ir::ExprKind::ConstRef:
         return ir::as<ir::ConstRef>(a)->constant == ir::as<ir::ConstRef>(b)->constant;
+      case ir::ExprKind::ObservableRef:
+        return ir::as<ir::ObservableRef>(a)->observable == ir::as<ir::ObservableRef>(b)->observable;
       case ir::ExprKind::VarRef: {
         auto x = ir::as<ir::VarRef>(a), y = ir::as<ir::VarRef>(b);
         return x->set == y->set && x->var == y->var && exchanged(x->label) == y->label;
@@ -285,7 +288,9 @@ PairSymmetryReport find_pair_symmetry(const ir::Model& model) {
   for (const ir::Stage& stage : model.stages)
     for (const ir::Statement& st : stage.statements)
       for (const ir::Accumulate* acc : ir::accumulations_in(st.value))
-        report[acc->id] = judge(model, st, *acc);
+        report[acc->id] = st.observable >= 0
+                              ? PairSymmetryFact{false, 0, "an observable's sum: one particle"}
+                              : judge(model, st, *acc);
   return report;
 }
 

@@ -49,6 +49,12 @@ UniformSumReport find_uniform_sums(const ir::Model& model) {
         reads.visit(acc->condition);
         reads.visit(acc->body);
         UniformSumFact& fact = report[acc->id];
+        if (st.observable >= 0) {
+          fact.once = true;
+          fact.reason = "a reduction for observable " + model.observables[st.observable].name +
+                        ": computed once";
+          continue;
+        }
         fact.once = reads.found.empty();
         fact.reason = fact.once ? "reads nothing of " + st.labels[0].name +
                                       ": computed once for all particles, not once per particle"

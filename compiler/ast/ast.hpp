@@ -47,10 +47,9 @@ struct Call;
 struct Norm;
 struct Postfix;
 
-struct Operand
-    : x3::variant<IntLiteral, RealLiteral, BoolLiteral, Identifier, Indexed,
-                  x3::forward_ast<Call>, x3::forward_ast<Norm>, x3::forward_ast<Unary>,
-                  x3::forward_ast<Postfix>, x3::forward_ast<Chain>> {
+struct Operand : x3::variant<IntLiteral, RealLiteral, BoolLiteral, Identifier, Indexed,
+                             x3::forward_ast<Call>, x3::forward_ast<Norm>, x3::forward_ast<Unary>,
+                             x3::forward_ast<Postfix>, x3::forward_ast<Chain>> {
   using base_type::base_type;
   using base_type::operator=;
 };
@@ -92,10 +91,16 @@ struct Call : Located {
   std::vector<Argument> args;
 };
 
+// v[i] (a particle variable) or e_kin (an observable)
+struct Target : Located {
+  Identifier var;
+  boost::optional<Identifier> label;
+};
+
 // target op value, op one of = += -= *= /=
 struct Assignment : Located {
   boost::optional<Identifier> name;  // `force: v[i] += ...`, for the schedule
-  Indexed target;
+  Target target;
   std::string op;
   Chain value;
 };
@@ -119,6 +124,21 @@ struct ParamDecl : Located {
 struct ConstDecl : Located {
   Identifier name;
   Chain value;
+};
+// observable e_kin: real = 0, a model-level value that statements assign
+struct ObservableDecl : Located {
+  Identifier name;
+  Identifier type;
+  Chain value;
+};
+// timestep = dt: how far each step advances t
+struct TimestepDecl : Located {
+  Chain value;
+};
+// output e_kin, p_tot every 10: the observables the run logs, how often
+struct OutputDecl : Located {
+  std::vector<Identifier> names;
+  boost::optional<Chain> every;
 };
 struct VarDecl : Located {
   Identifier name;
@@ -161,8 +181,9 @@ struct ScheduleBlock : Located {
   std::vector<ScheduleItem> items;
 };
 
-struct Declaration : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, FnDecl,
-                                 ParticlesDecl, StageBlock, ScheduleBlock> {
+struct Declaration
+    : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, ObservableDecl,
+                  TimestepDecl, OutputDecl, FnDecl, ParticlesDecl, StageBlock, ScheduleBlock> {
   using base_type::base_type;
   using base_type::operator=;
 };

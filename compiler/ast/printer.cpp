@@ -19,6 +19,9 @@ struct Printer {
   std::string operator()(const BoolLiteral& n) const { return n.value ? "true" : "false"; }
   std::string operator()(const Identifier& n) const { return n.name; }
   std::string operator()(const Indexed& n) const { return n.var.name + "[" + n.label.name + "]"; }
+  std::string operator()(const Target& n) const {
+    return n.var.name + (n.label ? "[" + n.label->name + "]" : "");
+  }
   std::string operator()(const Norm& n) const { return "(norm " + (*this)(n.inner) + ")"; }
   std::string operator()(const Unary& n) const {
     return "(" + n.op + " " + boost::apply_visitor(*this, n.operand) + ")";
@@ -47,7 +50,9 @@ struct Printer {
     return (*this)(n.get());
   }
 
-  std::string operator()(const ModelDecl& n) const { return "(model " + n.name.name + ") " + at(n); }
+  std::string operator()(const ModelDecl& n) const {
+    return "(model " + n.name.name + ") " + at(n);
+  }
   std::string operator()(const DimDecl& n) const {
     return "(dim " + std::to_string(n.value.value) + ") " + at(n);
   }
@@ -71,6 +76,18 @@ struct Printer {
   std::string operator()(const ConstDecl& n) const {
     return "(const " + n.name.name + " " + (*this)(n.value) + ") " + at(n);
   }
+  std::string operator()(const ObservableDecl& n) const {
+    return "(observable " + n.name.name + " " + n.type.name + " " + (*this)(n.value) + ") " + at(n);
+  }
+  std::string operator()(const TimestepDecl& n) const {
+    return "(timestep " + (*this)(n.value) + ") " + at(n);
+  }
+  std::string operator()(const OutputDecl& n) const {
+    std::string out = "(output";
+    for (const Identifier& name : n.names) out += " " + name.name;
+    if (n.every) out += " (every " + (*this)(*n.every) + ")";
+    return out + ") " + at(n);
+  }
   std::string operator()(const FnDecl& n) const {
     std::string out = "(fn " + n.name.name + " (";
     for (std::size_t k = 0; k < n.params.size(); ++k)
@@ -80,8 +97,8 @@ struct Printer {
   std::string operator()(const ParticlesDecl& n) const {
     std::string out = "(particles " + n.name.name + " " + (*this)(n.count) + ") " + at(n);
     for (const VarDecl& v : n.vars)
-      out += "\n  (var " + v.name.name + " " + v.type.name + (v.value ? " " + (*this)(*v.value) : "") +
-             ") " + at(v);
+      out += "\n  (var " + v.name.name + " " + v.type.name +
+             (v.value ? " " + (*this)(*v.value) : "") + ") " + at(v);
     return out;
   }
   std::string operator()(const StageBlock& n) const {

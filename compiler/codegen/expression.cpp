@@ -73,10 +73,10 @@ class Printer {
   Printed print(const Expr& e) {
     switch (e->kind) {
       case ExprKind::Literal: return {emit_literal(e->type, as<Literal>(e)->value), kPrimary};
-      case ExprKind::ParamRef:
-        return {names_.params.at(as<ParamRef>(e)->param), kPrimary};
-      case ExprKind::ConstRef:
-        return {names_.consts[as<ConstRef>(e)->constant], kPrimary};
+      case ExprKind::ParamRef: return {names_.params.at(as<ParamRef>(e)->param), kPrimary};
+      case ExprKind::ConstRef: return {names_.consts[as<ConstRef>(e)->constant], kPrimary};
+      case ExprKind::ObservableRef:
+        return {names_.observables.at(as<ObservableRef>(e)->observable), kPrimary};
       case ExprKind::VarRef: {
         auto v = as<VarRef>(e);
         return {names_.array(v->set, v->var) + "[" + names_.labels[v->label] + "]", kPrimary};
@@ -212,8 +212,9 @@ std::string emit_literal(Type type, double value) {
     }
     case Type::Real:
     case Type::Vec: {
-      if (std::isinf(value)) return value > 0 ? "std::numeric_limits<double>::infinity()"
-                                              : "-std::numeric_limits<double>::infinity()";
+      if (std::isinf(value))
+        return value > 0 ? "std::numeric_limits<double>::infinity()"
+                         : "-std::numeric_limits<double>::infinity()";
       std::string text = fmt::format("{}", value);  // shortest text that round-trips
       if (text.find_first_of(".en") == std::string::npos) text += ".0";
       return text;

@@ -12,20 +12,22 @@ namespace partc::codegen {
 
 // What the names in an expression are called in the kernel being emitted.
 struct ExpressionNames {
-  int home_set = 0;                                 // the set the statement's label (i) runs over
-  std::vector<std::string> labels;                  // loop index per statement label
+  int home_set = 0;                 // the set the statement's label (i) runs over
+  std::vector<std::string> labels;  // loop index per statement label
   std::function<std::string(int set, int var)> array;  // local array of a variable
-  std::vector<std::string> params;                  // each param's name (default params_.NAME)
-  std::vector<std::string> consts;                  // member (or local) holding each const
-  std::vector<std::string> functions;               // member function of each user fn
-  std::map<int, std::string> accumulators;          // Accumulate::id -> its variable
-  std::string dx_norm;                              // set when |dx| is computed once per pair
+  std::vector<std::string> params;                     // each param's name (default params_.NAME)
+  std::vector<std::string> consts;                     // member (or local) holding each const
+  std::vector<std::string> observables;                // member (or local) holding each observable
+  std::vector<std::string> functions;                  // member function of each user fn
+  std::map<int, std::string> accumulators;             // Accumulate::id -> its variable
+  std::string dx_norm;                                 // set when |dx| is computed once per pair
 };
 
 // C++ for `e`; the runtime's partc::Vec<dim> is spelled `Vec`. With
 // `operand_of`, parenthesised as needed to be the right operand of that
 // operator (for `p[i] + (a - b)` style updates).
-std::string emit_expression(const ir::Expr& e, const ir::Model& model, const ExpressionNames& names);
+std::string emit_expression(const ir::Expr& e, const ir::Model& model,
+                            const ExpressionNames& names);
 std::string emit_operand(const ir::Expr& e, ir::BinaryOp operand_of, const ir::Model& model,
                          const ExpressionNames& names);
 

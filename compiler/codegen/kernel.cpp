@@ -27,10 +27,11 @@ void ModelEmitter::plan_kernels() {
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {
       const Statement& st = stage.statements[k];
       const std::string stage_name = stage.kind == StageKind::Init ? "init" : "step";
-      const std::string set_part = m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "";
-      kernels_.push_back(
-          {members_.fresh(stage_name + "_" + set_part + m_.sets[st.set].vars[st.var].name), &st,
-           &facts_.aliasing[g][k]});
+      const std::string target = st.observable >= 0
+                                     ? m_.observables[st.observable].name
+                                     : (m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "") +
+                                           m_.sets[st.set].vars[st.var].name;
+      kernels_.push_back({members_.fresh(stage_name + "_" + target), &st, &facts_.aliasing[g][k]});
       kernel_stage_.push_back(stage.kind);
     }
   }
@@ -57,7 +58,8 @@ void ModelEmitter::kernel(const Kernel& k) {
 
   // Names local to this kernel: the model's own, then ours.
   NameTable locals;
-  for (const Label& l : st.labels) locals.reserve(cpp_name(l.name));
+  for (const Label& l : st.labels)
+    if (!l.name.empty()) locals.reserve(cpp_name(l.name));
   for (std::size_t s = 0; s < m_.sets.size(); ++s)
     for (std::size_t v = kFirstUserVar; v < m_.sets[s].vars.size(); ++v)
       locals.reserve(tag(static_cast<int>(s), static_cast<int>(v)));
@@ -72,7 +74,7 @@ void ModelEmitter::kernel(const Kernel& k) {
     return arrays[key] = locals.fresh(wanted);
   };
   std::set<std::pair<int, int>> needed = uses.arrays;
-  needed.insert({home, st.var});
+  if (st.observable < 0) needed.insert({home, st.var});
   if (uses.random) needed.insert({home, kId});
   for (const Accumulate* acc : uses.accumulations) {
     UsesDx dx;
@@ -144,6 +146,14 @@ void ModelEmitter::kernel(const Kernel& k) {
     const bool written = key.first == home && key.second == st.var;
     linef("{}auto& {} = {};", written ? "" : "const ", name, array_access(key.first, key.second));
   }
+  if (st.observable >= 0) {  // one value: its reductions, then the assignment
+    for (const Loop& l : loops) loop(l, st, names);
+    linef("{} {} {};", names.observables[st.observable], assign_op_spelling(st.op),
+          expression(st.value, names));
+    line("}");
+    line("");
+    return;
+  }
   linef("const std::size_t {} = {}.size();", count, set_member_[home]);
   std::string buffer;
   if (k.alias->buffered) {
@@ -203,6 +213,14 @@ void ModelEmitter::kernel_constants(const Statement& st, StatementUses uses, Exp
     if (evaluate_constant(m_.consts[c].value, m_)) continue;  // a static constexpr member already
     names.consts[c] = locals.fresh(cpp_name(m_.consts[c].name));
     linef("const {} {} = {};", cpp_type(m_.consts[c].type), names.consts[c], const_member_[c]);
+  }
+  // Observables are constant while a particle loop runs; an observable's own
+  // statement reads and writes the member.
+  if (st.observable >= 0) return;
+  for (int o : uses.observables) {
+    const std::string member = names.observables[o];
+    names.observables[o] = locals.fresh(cpp_name(m_.observables[o].name));
+    linef("const {} {} = {};", cpp_type(m_.observables[o].type), names.observables[o], member);
   }
 }
 

@@ -40,7 +40,10 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
                            const CodegenOptions& options)
     : m_(model), facts_(facts), file_(file), options_(options) {
   cls_ = codegen::class_name(m_.name);
-  for (const char* fixed : {"params_", "rng_", "step_", "domain_"}) members_.reserve(fixed);
+  members_.reserve(cls_);  // a member or nested type named like the class would be its constructor
+  observables_type_ = members_.fresh("Observables");
+  for (const char* fixed : {"params_", "rng_", "step_", "t_", "observables_", "domain_"})
+    members_.reserve(fixed);
   for (const ParticleSet& s : m_.sets) {
     set_member_.push_back(members_.fresh(cpp_name(s.name) + "_"));
     epoch_.push_back(members_.fresh(s.name + "_epoch_"));
@@ -49,7 +52,8 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
   for (const char* api :
        {"params", "set_seed", "step_count", "param_info", "set_param", "init", "load", "step",
-        "for_each_set", "search_report", "check_finite", "compute_constants"})
+        "for_each_set", "search_report", "check_finite", "compute_constants", "observables", "time",
+        "log_columns", "log_every", "log_row", "start_observables"})
     members_.reserve(api);
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
@@ -179,6 +183,15 @@ void ModelEmitter::public_types() {
     linef("{} {} = {};  // {}", cpp_type(p.type), cpp_name(p.name),
           emit_literal(p.type, as<Literal>(p.default_value)->value), source_line(p.loc));
   line("};");
+  if (has_user_observables()) {
+    line("");
+    line("// Observables: model-level values that statements assign, read with observables().");
+    linef("struct {} {{", observables_type_);
+    for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
+      linef("{} {}{{}};  // {}", cpp_type(m_.observables[o].type), cpp_name(m_.observables[o].name),
+            source_line(m_.observables[o].loc));
+    line("};");
+  }
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     const ParticleSet& set = m_.sets[s];
     line("");
@@ -202,6 +215,9 @@ void ModelEmitter::public_api() {
   line("const Params& params() const { return params_; }");
   line("void set_seed(std::uint64_t seed) { rng_ = partc::CounterRng(seed); }");
   line("std::int64_t step_count() const { return step_; }");
+  if (m_.timestep) line("double time() const { return t_; }");
+  if (has_user_observables())
+    linef("const {0}& observables() const {{ return observables_; }}", observables_type_);
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     linef("{0}& {1}() {{ return {2}; }}", set_type_[s], cpp_name(m_.sets[s].name), set_member_[s]);
     linef("const {0}& {1}() const {{ return {2}; }}", set_type_[s], cpp_name(m_.sets[s].name),
@@ -215,11 +231,17 @@ void ModelEmitter::public_api() {
   step();
   for_each_set();
   search_report();
+  log();
   line("");
   line("// Throws partc::NumericalError naming the first NaN or Inf found.");
   line("void check_finite() const {");
   for (std::size_t s = 0; s < m_.sets.size(); ++s)
     linef("partc::check_finite({}, \"{}\", step_);", set_member_[s], m_.sets[s].name);
+  if (m_.timestep) line("partc::check_finite_observable(t_, \"t\", step_);");
+  for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
+    if (m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec)
+      linef("partc::check_finite_observable(observables_.{}, \"{}\", step_);",
+            cpp_name(m_.observables[o].name), m_.observables[o].name);
   line("}");
   line("");
 }
@@ -258,7 +280,7 @@ void ModelEmitter::init() {
   line("// declared initial values, then runs the init blocks.");
   line("void init() {");
   line("compute_constants();");
-  line("step_ = 0;");
+  start_clock();
   for (std::size_t s = 0; s < m_.sets.size(); ++s) linef("create_{}();", m_.sets[s].name);
   for (const std::string& k : kernel_names(StageKind::Init)) linef("{}();", k);
   line("}");
@@ -271,7 +293,7 @@ void ModelEmitter::load() {
   line("// their declared initial values.");
   line("void load(const std::map<std::string, partc::CsvTable>& tables) {");
   line("compute_constants();");
-  line("step_ = 0;");
+  start_clock();
   std::vector<std::string> names;
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     const std::string& name = m_.sets[s].name;
@@ -298,10 +320,27 @@ std::vector<std::string> ModelEmitter::set_comparisons(const std::vector<std::st
   return out;
 }
 
+// Step 0, time 0 and each observable's initial value, as init and load begin.
+void ModelEmitter::start_clock() {
+  line("step_ = 0;");
+  if (m_.timestep) line("t_ = 0;");
+  for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o) {
+    const Observable& obs = m_.observables[o];
+    const Literal* literal = as<Literal>(obs.initial);
+    linef("observables_.{} = {};", cpp_name(obs.name),
+          literal ? emit_literal(obs.type, literal->value)
+                  : expression(obs.initial, initialiser_names(0)));
+  }
+}
+
 void ModelEmitter::step() {
-  line("// One time step: every step block, in order.");
+  line(m_.timestep ? "// One time step: every step block, in order; then t advances."
+                   : "// One time step: every step block, in order.");
   line("void step() {");
   for (const std::string& k : kernel_names(StageKind::Step)) linef("{}();", k);
+  if (m_.timestep)
+    linef("t_ += {};  // {}", expression(m_.timestep, initialiser_names(0)),
+          source_line(m_.timestep->loc));
   line("++step_;");
   line("}");
   line("");
@@ -331,6 +370,43 @@ void ModelEmitter::search_report() {
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
   line("return report;");
   line("}");
+}
+
+bool ModelEmitter::has_user_observables() const {
+  return m_.observables.size() > static_cast<std::size_t>(kFirstUserObservable);
+}
+
+// What the driver logs (`output ...`): columns, interval and one row; step
+// first, t next when the model has a timestep. Vecs take one column each
+// component, named as CSV files name them (p_tot_0, p_tot_1).
+void ModelEmitter::log() {
+  if (m_.log.observables.empty()) return;
+  std::vector<int> logged = {kStep};
+  if (m_.timestep) logged.push_back(kTime);
+  for (int o : m_.log.observables)
+    if (std::find(logged.begin(), logged.end(), o) == logged.end()) logged.push_back(o);
+  std::vector<std::string> columns, values;
+  const ExpressionNames names = base_names();
+  for (int o : logged) {
+    const Observable& obs = m_.observables[o];
+    const std::string value = names.observables[o];
+    if (obs.type == Type::Vec) {
+      for (int k = 0; k < m_.dim; ++k) {
+        columns.push_back(fmt::format("\"{}_{}\"", obs.name, k));
+        values.push_back(fmt::format("{}[{}]", value, k));
+      }
+    } else {
+      columns.push_back("\"" + obs.name + "\"");
+      values.push_back(obs.type == Type::Real ? value : "static_cast<double>(" + value + ")");
+    }
+  }
+  line("");
+  linef("// The observables the run logs ({}), and how often.", source_line(m_.log.loc));
+  linef("static std::vector<std::string> log_columns() {{ return {{{}}}; }}",
+        fmt::join(columns, ", "));
+  linef("std::int64_t log_every() const {{ return {}; }}",
+        m_.log.every ? expression(m_.log.every, names) : "1");
+  linef("std::vector<double> log_row() const {{ return {{{}}}; }}", fmt::join(values, ", "));
 }
 
 void ModelEmitter::helpers() {
@@ -368,6 +444,11 @@ ExpressionNames ModelEmitter::base_names() const {
   ExpressionNames names;
   for (const Param& param : m_.params) names.params.push_back("params_." + cpp_name(param.name));
   names.consts = const_member_;
+  for (const Observable& o : m_.observables)
+    names.observables.push_back(&o == &m_.observables[kStep] ? "step_"
+                                : &o == &m_.observables[kTime]
+                                    ? "t_"
+                                    : "observables_." + cpp_name(o.name));
   names.functions = function_member_;
   return names;
 }
@@ -463,6 +544,8 @@ void ModelEmitter::state() {
         fmt::join(lo, ", "), fmt::join(hi, ", "), fmt::join(periodic, ", "));
   line("partc::CounterRng rng_;");
   line("std::int64_t step_ = 0;");
+  if (m_.timestep) line("double t_ = 0;  // advanced by the timestep");
+  if (has_user_observables()) linef("{} observables_;", observables_type_);
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     linef("{} {};", set_type_[s], set_member_[s]);
     linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],

@@ -27,7 +27,7 @@ class StatementUses : public Visitor {
   std::set<std::pair<int, int>> arrays;  // (set, var) read
   std::vector<int> labels;               // through these labels, in order of reading
   std::vector<const Accumulate*> accumulations;
-  std::set<int> params, consts;
+  std::set<int> params, consts, observables;
   bool random = false;
 
  public:
@@ -40,6 +40,7 @@ class StatementUses : public Visitor {
   }
   void visit(const ParamRef& n) override { params.insert(n.param); }
   void visit(const ConstRef& n) override { consts.insert(n.constant); }
+  void visit(const ObservableRef& n) override { observables.insert(n.observable); }
   void visit(const Random&) override { random = true; }
   void visit(const Accumulate& n) override {
     accumulations.push_back(&n);
@@ -128,6 +129,9 @@ class ModelEmitter {
   void step();
   void for_each_set();
   void search_report();
+  void start_clock();
+  bool has_user_observables() const;
+  void log();
 
   // ---- private helpers --------------------------------------------------
 
@@ -200,7 +204,7 @@ class ModelEmitter {
   const SourceFile& file_;
   const CodegenOptions& options_;
   std::string out_;
-  std::string cls_;
+  std::string cls_, observables_type_;
   NameTable members_;
   std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
   std::map<SearchKey, std::string> searches_;

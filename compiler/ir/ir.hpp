@@ -23,6 +23,7 @@ enum class ExprKind {
   Literal,
   ParamRef,
   ConstRef,
+  ObservableRef,
   VarRef,
   Dx,
   Unary,
@@ -68,6 +69,13 @@ struct ConstRef : ExprNode {
   static constexpr ExprKind node_kind = ExprKind::ConstRef;
   ConstRef(Type t, int i, Location l) : ExprNode(node_kind, t, l), constant(i) {}
   const int constant;  // index into Model::consts
+};
+
+// A model-level value: an observable, or the built-in step and t.
+struct ObservableRef : ExprNode {
+  static constexpr ExprKind node_kind = ExprKind::ObservableRef;
+  ObservableRef(Type t, int i, Location l) : ExprNode(node_kind, t, l), observable(i) {}
+  const int observable;  // index into Model::observables
 };
 
 // A particle variable read through a label: v[i], p[j].
@@ -231,6 +239,25 @@ struct Const {
   Location loc;
 };
 
+// A model-level value, the same for every particle: assigned by statements
+// (e_kin = sum(i in P, ...)), read by later ones, logged by `output`.
+struct Observable {
+  std::string name;
+  Type type;
+  Expr initial;  // at init and load
+  bool builtin;  // step, t
+  Location loc;
+};
+// The builtin observables sit first, in this order.
+enum BuiltinObservable { kStep = 0, kTime = 1, kFirstUserObservable = 2 };
+
+// `output e_kin, t every 10`: the observables a run logs, and how often.
+struct Log {
+  std::vector<int> observables;  // into Model::observables; empty: no log
+  Expr every;                    // an int; null: every step
+  Location loc;
+};
+
 struct Variable {
   std::string name;
   Type type;
@@ -268,12 +295,15 @@ struct Schedule {
   Location loc;
 };
 
-// target[labels[0]] op= value, run for every particle of the target's set.
+// target[labels[0]] op= value, run for every particle of the target's set;
+// or, when `observable` is set, observable op= value, run once (its labels
+// are its reductions', labels[0] a placeholder naming no particle).
 struct Statement {
   std::string name;  // empty unless named for the schedule
   Schedule schedule;
   int set;
   int var;
+  int observable = -1;  // >= 0: the target is Model::observables[observable]
   AssignOp op;
   Expr value;
   std::vector<Label> labels;  // [0] is the statement's own label (i)
@@ -284,7 +314,7 @@ struct Statement {
 enum class StageKind { Init, Step };
 struct Stage {
   StageKind kind;
-  int set;
+  int set;  // -1: a block of a model with several sets that assigns only observables
   std::vector<Statement> statements;
   Location loc;
 };
@@ -302,6 +332,9 @@ struct Model {
   std::vector<Const> consts;
   std::vector<UserFn> functions;
   std::vector<ParticleSet> sets;
+  std::vector<Observable> observables;  // step and t first
+  Expr timestep;                        // null: t is not defined
+  Log log;
   std::vector<Stage> stages;  // in file order
   int random_streams = 0;
   int accumulations = 0;

@@ -18,6 +18,7 @@ class Mutator {
   virtual Expr mutate(const Literal&, const Expr& self) { return self; }
   virtual Expr mutate(const ParamRef&, const Expr& self) { return self; }
   virtual Expr mutate(const ConstRef&, const Expr& self) { return self; }
+  virtual Expr mutate(const ObservableRef&, const Expr& self) { return self; }
   virtual Expr mutate(const VarRef&, const Expr& self) { return self; }
   virtual Expr mutate(const Dx&, const Expr& self) { return self; }
   virtual Expr mutate(const Random&, const Expr& self) { return self; }

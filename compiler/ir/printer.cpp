@@ -28,6 +28,7 @@ std::string to_string(const Expr& e, const Model& model, const std::vector<Label
     case ExprKind::Literal: return number(e->type, as<Literal>(e)->value);
     case ExprKind::ParamRef: return model.params[as<ParamRef>(e)->param].name;
     case ExprKind::ConstRef: return model.consts[as<ConstRef>(e)->constant].name;
+    case ExprKind::ObservableRef: return model.observables[as<ObservableRef>(e)->observable].name;
     case ExprKind::VarRef: {
       auto v = as<VarRef>(e);
       return model.sets[v->set].vars[v->var].name + "[" + labels[v->label].name + "]";
@@ -103,12 +104,27 @@ std::string to_string(const Model& model) {
       out += fmt::format("  {}: {}{}{}\n", v.name, type_name(v.type), v.builtin ? " (builtin)" : "",
                          v.initial ? " = " + to_string(v.initial, model, {{"i", 0}}) : "");
   }
+  for (const Observable& o : model.observables)
+    if (!o.builtin)
+      out += fmt::format("observable {}: {} = {}\n", o.name, type_name(o.type),
+                         to_string(o.initial, model, none));
+  if (model.timestep) out += "timestep " + to_string(model.timestep, model, none) + "\n";
+  if (!model.log.observables.empty()) {
+    out += "output";
+    for (int o : model.log.observables) out += " " + model.observables[o].name;
+    if (model.log.every) out += " every " + to_string(model.log.every, model, none);
+    out += "\n";
+  }
   for (const Stage& stage : model.stages) {
-    out += fmt::format("{} {}\n", stage.kind == StageKind::Init ? "init" : "step", model.sets[stage.set].name);
-    for (const Statement& st : stage.statements)
-      out += fmt::format("  {}[{}] {} {}  # line {}, {}\n", model.sets[st.set].vars[st.var].name,
-                         st.labels[0].name, assign_op_spelling(st.op), to_string(st.value, model, st.labels),
-                         st.line, type_name(st.value->type));
+    out += fmt::format("{} {}\n", stage.kind == StageKind::Init ? "init" : "step",
+                       stage.set >= 0 ? model.sets[stage.set].name : "(observables)");
+    for (const Statement& st : stage.statements) {
+      const std::string target = st.observable >= 0
+                                     ? model.observables[st.observable].name
+                                     : model.sets[st.set].vars[st.var].name + "[" + st.labels[0].name + "]";
+      out += fmt::format("  {} {} {}  # line {}, {}\n", target, assign_op_spelling(st.op),
+                         to_string(st.value, model, st.labels), st.line, type_name(st.value->type));
+    }
   }
   return out;
 }

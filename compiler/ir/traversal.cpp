@@ -11,6 +11,7 @@ void Visitor::visit(const Expr& e) {
     case ExprKind::Literal: return visit(*as<Literal>(e));
     case ExprKind::ParamRef: return visit(*as<ParamRef>(e));
     case ExprKind::ConstRef: return visit(*as<ConstRef>(e));
+    case ExprKind::ObservableRef: return visit(*as<ObservableRef>(e));
     case ExprKind::VarRef: return visit(*as<VarRef>(e));
     case ExprKind::Dx: return visit(*as<Dx>(e));
     case ExprKind::Unary: return visit(*as<Unary>(e));
@@ -33,6 +34,7 @@ Expr Mutator::mutate(const Expr& e) {
     case ExprKind::Literal: return mutate(*as<Literal>(e), e);
     case ExprKind::ParamRef: return mutate(*as<ParamRef>(e), e);
     case ExprKind::ConstRef: return mutate(*as<ConstRef>(e), e);
+    case ExprKind::ObservableRef: return mutate(*as<ObservableRef>(e), e);
     case ExprKind::VarRef: return mutate(*as<VarRef>(e), e);
     case ExprKind::Dx: return mutate(*as<Dx>(e), e);
     case ExprKind::Unary: return mutate(*as<Unary>(e), e);

@@ -20,6 +20,7 @@ class Visitor {
   virtual void visit(const Literal&) {}
   virtual void visit(const ParamRef&) {}
   virtual void visit(const ConstRef&) {}
+  virtual void visit(const ObservableRef&) {}
   virtual void visit(const VarRef&) {}
   virtual void visit(const Dx&) {}
   virtual void visit(const Random&) {}

@@ -185,6 +185,9 @@ Expr Sema::check_random(const ast::Call& n, Scope& scope) {
   if (scope.where == Scope::Where::Constant)
     fail(n.loc, scope.context + " cannot be random",
          "random numbers are drawn per particle, in initial values and statements");
+  if (!scope.home)
+    fail(n.loc, "an observable's statement cannot draw random numbers",
+         "draws are keyed by a particle's id; draw per particle, in a statement like x[i] = ...");
   if (scope.in_accumulation)
     fail(n.loc, "random numbers inside an accumulation are not supported",
          "a draw is keyed by one particle's id; draw per particle outside the sum");
@@ -226,6 +229,10 @@ Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope
            "the first argument of " + name + " must be a new label, as in " + name + "(j, ...)");
     label = {id->name, scope.labels->front().set};
     label_loc = id->loc;
+    if (label.set < 0)
+      fail(id->loc,
+           "this block updates no particle set: say which set " + quoted(id->name) + " runs over",
+           "as in " + name + "(" + id->name + " in " + model_.sets[0].name + ", ...)");
   }
   if (label.name == scope.labels->front().name)
     fail(statement_target_,

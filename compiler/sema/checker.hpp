@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -58,6 +59,8 @@ struct Scope {
   std::vector<ir::Label>* labels = nullptr;
   std::vector<int> bound;  // labels visible here, innermost last
   bool in_accumulation = false;
+  bool home = true;                      // there is a particle i (not in an observable's statement)
+  bool observables = false;              // may read observables, which change during a run
   const ir::UserFn* function = nullptr;  // whose arguments are in scope
 };
 
@@ -109,6 +112,10 @@ class Sema {
   void declare_const(const ast::ConstDecl& decl);
   void declare_fn(const ast::FnDecl& decl);
   void declare_set(const ast::ParticlesDecl& decl);
+  void declare_builtin_observables();
+  void declare_observable(const ast::ObservableDecl& decl);
+  void check_timestep(const ast::TimestepDecl& decl);
+  void check_output(const ast::OutputDecl& decl);
 
   // ---- statements.cpp: stages, statements and the schedule ----------------
   void check_stage(const ast::StageBlock& block);
@@ -116,6 +123,9 @@ class Sema {
   int set_named(const ast::Identifier& name);
   std::vector<std::string> set_names() const;
   ir::Statement check_statement(const ast::Assignment& a, int set_index);
+  ir::Statement check_observable_statement(const ast::Assignment& a, int set_index);
+  ir::Expr check_assigned_value(const ast::Assignment& a, ir::AssignOp op, Type type,
+                                const std::string& what, Scope& scope);
   void not_assignable(const ast::Identifier& name, const ir::ParticleSet& set);
 
   void check_schedule(const ast::ScheduleItem& item);
@@ -153,13 +163,14 @@ class Sema {
     Location loc;
   };
   struct Name {
-    enum Kind { Param, Const, Set, Fn } kind;
+    enum Kind { Param, Const, Set, Fn, Observable } kind;
     int index;
   };
   std::string source_text(Location loc) const { return std::string(file_.slice(loc)); }
 
   const SourceFile& file_;
-  Location statement_target_;  // of the statement being checked
+  Location statement_target_;          // of the statement being checked
+  std::optional<Location> time_read_;  // where t was first read (it needs a timestep)
   ir::Model model_;
   std::vector<Diagnostic> diagnostics_;  // errors and warnings, in the order found
   bool has_errors() const {

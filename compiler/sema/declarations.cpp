@@ -9,16 +9,25 @@ namespace partc::sema {
 
 ir::Model Sema::run(const ast::Program& program) {
   const ast::DomainDecl& domain = collect_header(program);
-  for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
+  declare_builtin_observables();
   // A set is declared even when its count or a variable is wrong (see
   // declare_set); with none at all, stage blocks have nothing to update.
+  for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
   // After the consts, which its bounds may name.
   guarded([&] { check_domain(domain); });
   if (model_.sets.empty() && !has_errors())
     diagnostics_.push_back({Location{}, "a model needs at least one particle set",
                             "declare one with: particles P(N) { v: vec = 0 }"});
+  // After every observable, which they may name.
+  for (const ast::Declaration& decl : program.declarations) {
+    if (auto t = boost::get<ast::TimestepDecl>(&decl)) guarded([&] { check_timestep(*t); });
+    if (auto o = boost::get<ast::OutputDecl>(&decl)) guarded([&] { check_output(*o); });
+  }
   for (const ast::Declaration& decl : program.declarations)
     if (auto stage = boost::get<ast::StageBlock>(&decl)) check_stage(*stage);
+  if (time_read_ && !model_.timestep)
+    diagnostics_.push_back({*time_read_, "t is the time, which needs a timestep",
+                            "say how far a step advances time, as in: timestep = dt"});
   for (const ast::Declaration& decl : program.declarations)
     if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
       for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
@@ -113,6 +122,8 @@ void Sema::declare(const ast::Declaration& decl) {
   if (auto p = boost::get<ast::ParamDecl>(&decl)) poisoned(p->name, [&] { declare_param(*p); });
   if (auto c = boost::get<ast::ConstDecl>(&decl)) poisoned(c->name, [&] { declare_const(*c); });
   if (auto f = boost::get<ast::FnDecl>(&decl)) poisoned(f->name, [&] { declare_fn(*f); });
+  if (auto o = boost::get<ast::ObservableDecl>(&decl))
+    poisoned(o->name, [&] { declare_observable(*o); });
   if (auto s = boost::get<ast::ParticlesDecl>(&decl)) declare_set(*s);
 }
 
@@ -210,6 +221,82 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
   }
   model_.sets.push_back(std::move(set));
   names_.emplace(decl.name.name, Name{Name::Set, set_index});
+}
+
+// step (the steps taken) and t (the time, when the model has a timestep).
+void Sema::declare_builtin_observables() {
+  auto builtin = [&](const char* name, Type type) {
+    model_.observables.push_back(
+        {name, type, std::make_shared<ir::Literal>(type, 0, Location{}), true, Location{}});
+    names_.emplace(name, Name{Name::Observable, static_cast<int>(model_.observables.size() - 1)});
+  };
+  builtin("step", Type::Int);
+  builtin("t", Type::Real);
+}
+
+void Sema::declare_observable(const ast::ObservableDecl& decl) {
+  declare_global(decl.name, "observable");
+  const Type type = type_named(decl.type, true);
+  Scope scope;
+  scope.context = "the initial value of an observable";
+  Expr initial =
+      convert(check(decl.value, scope), type, decl.value.loc, "observable " + decl.name.name);
+  model_.observables.push_back({decl.name.name, type, initial, false, decl.loc});
+  names_.emplace(decl.name.name,
+                 Name{Name::Observable, static_cast<int>(model_.observables.size() - 1)});
+}
+
+void Sema::check_timestep(const ast::TimestepDecl& decl) {
+  if (model_.timestep)
+    fail(decl.loc, "a second timestep declaration",
+         "the first is on line " +
+             std::to_string(file_.line_column(model_.timestep->loc.begin).line));
+  Scope scope;
+  scope.context = "the timestep";
+  scope.observables = true;  // an adaptive step reads what the last one measured
+  Expr dt = check(decl.value, scope);
+  if (!ir::is_numeric_scalar(dt->type))
+    fail(decl.value.loc, "the timestep must be a number, not " + a_type(dt->type));
+  if (auto value = evaluate_constant(dt, model_); value && !(*value > 0))
+    fail(decl.value.loc, "the timestep must be positive");
+  model_.timestep = dt;
+}
+
+// Which observables the run logs: step always, t when there is a timestep.
+void Sema::check_output(const ast::OutputDecl& decl) {
+  if (model_.log.loc.end != 0)
+    fail(decl.loc, "a second output declaration",
+         "the first is on line " + std::to_string(file_.line_column(model_.log.loc.begin).line));
+  std::vector<int> chosen;
+  for (const ast::Identifier& name : decl.names) {
+    const auto it = names_.find(name.name);
+    follow_on_if_failed(name.name);
+    if (it == names_.end() || it->second.kind != Name::Observable) {
+      for (const ir::ParticleSet& s : model_.sets)
+        if (s.find_var(name.name) >= 0)
+          fail(name.loc, quoted(name.name) + " is a particle variable, not an observable",
+               "output lists observables; the driver writes particle variables with --output and "
+               "--vtk, or sum them into an observable: observable total: real = 0");
+      std::vector<std::string> known;
+      for (const ir::Observable& o : model_.observables) known.push_back(o.name);
+      fail(name.loc, "unknown observable " + quoted(name.name) + suggestion(name.name, known),
+           "declare it with: observable " + name.name + ": real = 0");
+    }
+    if (std::find(chosen.begin(), chosen.end(), it->second.index) != chosen.end())
+      fail(name.loc, quoted(name.name) + " listed twice");
+    chosen.push_back(it->second.index);
+  }
+  if (decl.every) {
+    Scope scope;
+    scope.context = "the output interval";
+    Expr every =
+        convert(check(*decl.every, scope), Type::Int, decl.every->loc, "the output interval");
+    if (auto value = evaluate_constant(every, model_); value && !(*value >= 1))
+      fail(decl.every->loc, "the output interval must be at least 1 step");
+    model_.log.every = every;
+  }
+  model_.log.observables = std::move(chosen);
+  model_.log.loc = decl.loc;
 }
 
 }  // namespace partc::sema

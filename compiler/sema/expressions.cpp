@@ -231,6 +231,10 @@ Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
     if (!scope.in_accumulation)
       fail(n.loc, "dx is only defined inside an accumulation",
            "dx is the shortest vector from particle i to particle j, as in sum(j, |dx| < rc, ...)");
+    if (!scope.home)
+      fail(n.loc, "dx needs two particles, and an observable's sum runs over one",
+           "compute per-particle values in a statement first, as in e[i] = sum(j, |dx| < rc, ...), "
+           "then sum them: total = sum(i in P, e[i])");
     return std::make_shared<ir::Dx>(scope.bound.front(), scope.bound.back(), n.loc);
   }
   if (scope.function) {
@@ -253,6 +257,15 @@ Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
       case Name::Set: fail(n.loc, quoted(n.name) + " is a particle set, not a value");
       case Name::Fn:
         fail(n.loc, quoted(n.name) + " is a function; call it, as in " + n.name + "(...)");
+      case Name::Observable: {
+        const ir::Observable& o = model_.observables[it->second.index];
+        if (scope.where == Scope::Where::Constant && !scope.observables)
+          fail(n.loc,
+               scope.context + " cannot read " + quoted(n.name) + ", which changes during a run",
+               scope.function ? "pass it as an argument" : "");
+        if (it->second.index == ir::kTime && !time_read_) time_read_ = n.loc;
+        return std::make_shared<ir::ObservableRef>(o.type, it->second.index, n.loc);
+      }
     }
   }
   if (is_builtin_name(n.name))
@@ -265,7 +278,7 @@ Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
     for (const ir::ParticleSet& s : model_.sets)
       if (s.find_var(n.name) >= 0)
         fail(n.loc, quoted(n.name) + " is a particle variable; index it with a label, as in " +
-                        n.name + "[" + scope.labels->front().name + "]");
+                        n.name + "[" + (scope.home ? scope.labels->front().name : "i") + "]");
   }
   follow_on_if_failed(n.name);
   std::vector<std::string> known;
@@ -290,6 +303,12 @@ Expr Sema::check_indexed(const ast::Indexed& n, Scope& scope) {
       if (l.name == n.label.name)
         fail(n.label.loc,
              "label " + quoted(n.label.name) + " is only bound inside its accumulation");
+    if (!scope.home)
+      fail(n.label.loc, "label " + quoted(n.label.name) + " is not bound here",
+           "an observable is one value for the model: read particle variables inside a "
+           "reduction, as in sum(" +
+               n.label.name + " in " + model_.sets[0].name + ", " + n.var.name + "[" +
+               n.label.name + "])");
     fail(n.label.loc, "label " + quoted(n.label.name) + " is not bound here",
          "a statement names its own particle by the label of its target (" +
              scope.labels->front().name +

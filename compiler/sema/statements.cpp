@@ -1,4 +1,6 @@
 // Sema: stage blocks, their statements, and the schedule.
+#include <algorithm>
+#include <map>
 #include <set>
 
 #include "ir/constant.hpp"
@@ -37,6 +39,11 @@ void Sema::check_stage(const ast::StageBlock& block) {
 int Sema::resolve_stage_set(const ast::StageBlock& block) {
   if (block.set) return set_named(*block.set);
   if (model_.sets.empty()) throw SemaError{{}, true};  // "a model needs a set" says it
+  // A block that assigns only observables needs no set.
+  const bool observables_only =
+      std::all_of(block.body.begin(), block.body.end(),
+                  [](const ast::Assignment& a) { return !a.target.label; });
+  if (model_.sets.size() != 1 && observables_only) return -1;
   if (model_.sets.size() != 1)
     fail(block.loc, "this model has several particle sets: name the one this " + block.kind +
                         " block updates, as in '" + block.kind + " " + model_.sets[0].name +
@@ -81,7 +88,32 @@ void Sema::not_assignable(const ast::Identifier& name, const ir::ParticleSet& se
                " { ... }'");
 }
 
+namespace {
+
+ir::AssignOp assign_op(const std::string& spelled) {
+  static const std::map<std::string, ir::AssignOp> ops = {{"=", ir::AssignOp::Set},
+                                                          {"+=", ir::AssignOp::Add},
+                                                          {"-=", ir::AssignOp::Sub},
+                                                          {"*=", ir::AssignOp::Mul},
+                                                          {"/=", ir::AssignOp::Div}};
+  return ops.at(spelled);
+}
+
+}  // namespace
+
 ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
+  if (!a.target.label) return check_observable_statement(a, set_index);
+  const ast::Identifier& label = *a.target.label;
+  if (auto it = names_.find(a.target.var.name);
+      it != names_.end() && it->second.kind == Name::Observable)
+    fail(a.target.loc,
+         quoted(a.target.var.name) +
+             " is an observable, one value for the model: assign it "
+             "without a label",
+         "as in " + a.target.var.name + " = sum(" + label.name + " in P, ...)");
+  if (set_index < 0)
+    fail(a.target.loc, "this model has several particle sets: name the one this block updates",
+         "as in 'step " + model_.sets[0].name + " { ... }'");
   const ir::ParticleSet& set = model_.sets[set_index];
   ir::Statement st;
   st.set = set_index;
@@ -94,48 +126,87 @@ ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
                                set.name + suggestion(a.target.var.name, var_names(set)));
   const ir::Variable& var = set.vars[st.var];
   if (st.var == ir::kId) fail(a.target.var.loc, "'id' is read-only: particle ids never change");
-  st.labels.push_back({a.target.label.name, set_index});
+  st.labels.push_back({label.name, set_index});
   statement_target_ = a.target.loc;
   for (const ir::ParticleSet& s : model_.sets)
-    if (s.find_var(a.target.label.name) >= 0 || names_.count(a.target.label.name))
-      fail(a.target.label.loc, "label " + quoted(a.target.label.name) +
-                                   " has the name of a variable, param, const or set");
-  static const std::map<std::string, ir::AssignOp> ops = {{"=", ir::AssignOp::Set},
-                                                          {"+=", ir::AssignOp::Add},
-                                                          {"-=", ir::AssignOp::Sub},
-                                                          {"*=", ir::AssignOp::Mul},
-                                                          {"/=", ir::AssignOp::Div}};
-  st.op = ops.at(a.op);
+    if (s.find_var(label.name) >= 0 || names_.count(label.name))
+      fail(label.loc, "label " + quoted(label.name) +
+                          " has the name of a variable, param, const, observable or set");
+  st.op = assign_op(a.op);
 
   Scope scope;
   scope.where = Scope::Where::Statement;
   scope.context = "a statement";
   scope.labels = &st.labels;
   scope.bound = {0};
+  scope.observables = true;
+  st.value = check_assigned_value(a, st.op, var.type, "variable " + var.name, scope);
+  return st;
+}
+
+// e_kin = sum(i in P, ...): run once, not per particle. labels[0] is a
+// placeholder for the particle there is not, over the block's set (if it
+// has one), so that sum(i, ...) runs over that set.
+ir::Statement Sema::check_observable_statement(const ast::Assignment& a, int set_index) {
+  const std::string& name = a.target.var.name;
+  const auto it = names_.find(name);
+  if (it == names_.end() || it->second.kind != Name::Observable) {
+    for (const ir::ParticleSet& s : model_.sets)
+      if (s.find_var(name) >= 0)
+        fail(a.target.loc, quoted(name) + " is a particle variable: write " + name + "[i] " + a.op +
+                               " ... to update every particle");
+    if (set_index >= 0) not_assignable(a.target.var, model_.sets[set_index]);
+    follow_on_if_failed(name);
+    std::vector<std::string> known;
+    for (const ir::Observable& o : model_.observables)
+      if (!o.builtin) known.push_back(o.name);
+    fail(a.target.loc, "unknown observable " + quoted(name) + suggestion(name, known),
+         "declare it with: observable " + name + ": real = 0");
+  }
+  const ir::Observable& observable = model_.observables[it->second.index];
+  if (observable.builtin)
+    fail(
+        a.target.loc, quoted(name) + " is kept by the run and cannot be assigned",
+        name == "t" ? "t advances by the timestep after each step" : "step counts the steps taken");
+  ir::Statement st;
+  st.set = set_index;
+  st.var = -1;
+  st.observable = it->second.index;
+  st.loc = a.loc;
+  st.line = file_.line_column(a.loc.begin).line;
+  st.labels.push_back({"", set_index});
+  statement_target_ = a.target.loc;
+  st.op = assign_op(a.op);
+  Scope scope;
+  scope.where = Scope::Where::Statement;
+  scope.context = "an observable's statement";
+  scope.labels = &st.labels;
+  scope.home = false;
+  scope.observables = true;
+  st.value = check_assigned_value(a, st.op, observable.type, "observable " + name, scope);
+  return st;
+}
+
+// The value of `target op= value`, checked against the target's type.
+ir::Expr Sema::check_assigned_value(const ast::Assignment& a, ir::AssignOp op, Type type,
+                                    const std::string& what, Scope& scope) {
   Expr value = check(a.value, scope);
-  const std::string what = "variable " + var.name;
   const Location at = a.value.loc;
-  switch (st.op) {
-    case ir::AssignOp::Set: value = convert(value, var.type, at, what); break;
+  if (type == Type::Bool && op != ir::AssignOp::Set)
+    fail(a.loc, "bool " + what + " can only be assigned with '='");
+  switch (op) {
+    case ir::AssignOp::Set:
     case ir::AssignOp::Add:
-    case ir::AssignOp::Sub:
-      if (var.type == Type::Bool)
-        fail(a.loc, "bool variable " + quoted(var.name) + " can only be assigned with '='");
-      value = convert(value, var.type, at, what);
-      break;
+    case ir::AssignOp::Sub: return convert(value, type, at, what);
     case ir::AssignOp::Mul:
     case ir::AssignOp::Div:
-      if (var.type == Type::Bool)
-        fail(a.loc, "bool variable " + quoted(var.name) + " can only be assigned with '='");
-      if (var.type == Type::Int && st.op == ir::AssignOp::Div)
-        fail(a.loc, "int variable " + quoted(var.name) + " cannot be divided in place",
+      if (type == Type::Int && op == ir::AssignOp::Div)
+        fail(a.loc, "int " + what + " cannot be divided in place",
              "'/' gives a real; assign to a real variable instead");
-      value = convert(value, var.type == Type::Vec ? Type::Real : var.type, at,
-                      var.type == Type::Vec ? "the scale factor of vec " + var.name : what);
-      break;
+      return convert(value, type == Type::Vec ? Type::Real : type, at,
+                     type == Type::Vec ? "the scale factor of vec " + what : what);
   }
-  st.value = value;
-  return st;
+  internal_error("check_assigned_value: unknown operator");
 }
 
 void Sema::check_schedule(const ast::ScheduleItem& item) {

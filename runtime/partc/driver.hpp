@@ -4,7 +4,7 @@
 //
 // Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
-// --quiet; "--option=value" works too. Exit status: 0 success, 1 bad input
+// --log FILE.csv, --log-every M, --quiet; "--option=value" works too. Exit status: 0 success, 1 bad input
 // file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
 // Surprises:
@@ -17,7 +17,10 @@
 // - The model's sets are discovered through for_each_set on a freshly
 //   constructed model, before init or load: generated models hold their sets
 //   as members, so this needs no extra API.
-// - VTK "time" is the step number: the driver does not know the model's dt.
+// - VTK "time" is the model's t when it has a timestep, else the step number.
+// - A model with `output NAME, ...` logs those observables (thermo_log.hpp):
+//   a progress row on the terminal every few steps (the model's interval, or
+//   --log-every; not with --quiet), and every step into --log FILE.csv.
 // - The summary ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
 #pragma once
@@ -45,6 +48,7 @@
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
 #include "partc/model_support.hpp"  // ParamInfo: a model used as a library needs it too
+#include "partc/thermo_log.hpp"
 #include "partc/vec.hpp"
 #include "partc/vtk.hpp"
 
@@ -60,13 +64,29 @@ struct DriverOptions {
   std::string vtk_prefix;                                   // "" = no VTK output
   std::int64_t every = 1;
   std::int64_t check_every = 1;
+  std::string log;                         // "" = no CSV time series
+  std::optional<std::int64_t> log_every;  // overrides the model's interval
   bool quiet = false;
 };
+
+// Models that log observables (`output ...`) have log_columns(), log_every()
+// and log_row(); others have none of them.
+template <class Model, class = void>
+struct logs_observables : std::false_type {};
+template <class Model>
+struct logs_observables<Model, std::void_t<decltype(Model::log_columns())>> : std::true_type {};
+
+template <class Model, class = void>
+struct has_time : std::false_type {};
+template <class Model>
+struct has_time<Model, std::void_t<decltype(std::declval<const Model&>().time())>>
+    : std::true_type {};
 
 inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
-         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--quiet] [--help]";
+         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--log FILE.csv]"
+         " [--log-every M] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -162,6 +182,16 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
     } else if (option == "--output") {
       options.output = value();
       require_directory_of(option, options.output);
+    } else if (option == "--log" || option == "--log-every") {
+      if constexpr (!logs_observables<Model>::value)
+        throw UsageError("option " + option + ": model " + std::string(Model::model_name) +
+                         " logs no observables (its .part file has no 'output' line)");
+      if (option == "--log") {
+        options.log = value();
+        require_directory_of(option, options.log);
+      } else {
+        options.log_every = parse_count<std::int64_t>(option, value());
+      }
     } else if (option == "--vtk") {
       options.vtk_prefix = value();
       require_directory_of(option, options.vtk_prefix);
@@ -189,7 +219,13 @@ void print_help(std::ostream& out, const Model& model) {
        << "  --output FILE.csv    write the final state (FILE_SET.csv with several sets)\n"
        << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
        << "  --every M            VTK every M steps (default 1; step 0 is always written)\n"
-       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n"
+       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n";
+  if constexpr (logs_observables<Model>::value)
+    text << "  --log FILE.csv       write the logged observables every step (columns: "
+         << join(Model::log_columns()) << ")\n"
+         << "  --log-every M        a progress row every M steps (default " << model.log_every()
+         << "; 0: none)\n";
+  text
        << "  --quiet              no summary at the end\n"
        << "  --help               this text\n\n"
        << "Parameters:\n";
@@ -263,6 +299,11 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     return every > 0 && step % every == 0;
   };
 
+  std::optional<ThermoLog> log;
+  if constexpr (logs_observables<Model>::value)
+    log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
+                options.log_every.value_or(model.log_every()), options.log);
+
   // Step 0 (the state after init or load) is checked and written like any other.
   bool checked = false;
   for (std::int64_t k = 0; k <= options.steps; ++k) {
@@ -270,12 +311,16 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     const std::int64_t step = model.step_count();
     checked = due(step, options.check_every);
     if (checked) model.check_finite();
+    if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
+    double time = static_cast<double>(step);
+    if constexpr (has_time<Model>::value) time = model.time();
     if (!series.empty() && due(step, options.every))
       model.for_each_set([&](const char* name, const auto& set) {
-        series.at(name).write(set, step, static_cast<double>(step));
+        series.at(name).write(set, step, time);
       });
   }
   if (options.check_every > 0 && !checked) model.check_finite();
+  if (log) log->close();
 
   if (!options.output.empty())
     model.for_each_set([&](const char* name, const auto& set) {

@@ -5,12 +5,14 @@
 // value of any floating variable: variables in for_each_variable order
 // (positions "p" first), and within a variable, particles in storage order,
 // which need not be id order. Integer and bool variables cannot hold NaN and
-// are skipped.
+// are skipped. check_finite_observable(value, "e_kin", step) does the same
+// for one model-level value.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <type_traits>
 
 #include "partc/errors.hpp"
@@ -47,6 +49,19 @@ void check_finite(const Set& set, const char* set_name, std::int64_t step) {
         }
     }
   });
+}
+
+template <class S>
+void check_finite_observable(const S& value, const char* name, std::int64_t step) {
+  if constexpr (std::is_floating_point_v<S> || StorageTraits<S>::is_vec) {
+    for (int k = 0; k < StorageTraits<S>::components; ++k) {
+      const double x = StorageTraits<S>::component(value, k);
+      if (std::isfinite(x)) continue;
+      throw NumericalError("numerical blow-up: observable '" + std::string(name) + "' is " +
+                           (std::isnan(x) ? std::string("nan") : std::to_string(x)) +
+                           " at step " + std::to_string(step));
+    }
+  }
 }
 
 }  // namespace partc
