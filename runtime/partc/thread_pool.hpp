@@ -1,0 +1,305 @@
+// partc/thread_pool.hpp: ThreadPool, the threads behind partc::parallel_for
+// (parallel.hpp), in place of OpenMP's parallel regions.
+//
+//   detail::ThreadPool::instance().run(threads, chunks, f);  // f(c) for c < chunks
+//
+// Why not OpenMP: libgomp's workers and its end-of-region barrier spin for a
+// long time (GOMP_SPINCOUNT, 300000 rounds by default) before they sleep, and
+// every thread of a team must arrive at that barrier. When another program
+// keeps a core busy, the thread that is not running holds the others up, and
+// they spin away the very time slices it needs: a DEM model took 71 s on 2
+// threads against 0.48 s on one. OMP_WAIT_POLICY=passive cures it, but libgomp
+// reads the environment when it is loaded, before main or any constructor of
+// the program (setenv there is too late), and has no call to change it later.
+//
+// How this pool behaves instead:
+// - The calling thread works too, and nobody waits for anybody to arrive.
+//   The chunks of a job are dealt out in one share per thread; each thread
+//   claims its own share's chunks one at a time, then what is left of the
+//   others'. If a worker is descheduled, the caller does its share; the
+//   caller waits only for chunks that a worker has claimed and not finished.
+// - Waits spin briefly (spin_wait), then sleep on a condition variable, so
+//   that a thread preempted mid-chunk can be run on the waiter's core, and
+//   an idle worker leaves its core to whatever else the machine runs.
+// - Which thread runs which chunk varies from run to run. parallel_for's
+//   callers never depend on it: every iteration writes its own values only,
+//   so results are bitwise the same for any thread count and any schedule.
+// - Workers are started when first needed and live as long as the process:
+//   the pool is never destroyed, so no static destructor can run after it is
+//   gone, and nothing has to be joined at exit (sleeping threads just end).
+// - One job at a time: a run that finds the pool busy (a call from another
+//   thread, or from inside a job: nested loops) returns false and the caller
+//   runs its loop serially. A child made by fork() starts a pool of its own.
+// - An exception thrown by f is rethrown by run on the calling thread, once
+//   every claimed chunk has ended; chunks not yet started are skipped.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <pthread.h>
+#endif
+
+namespace partc::detail {
+
+// One round of a spin loop: tells the CPU (and a hypervisor) that we wait.
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+
+class ThreadPool {
+ public:
+  // Most threads in one job, the caller included.
+  static constexpr unsigned max_threads = 256;
+  // Most chunks in one job (a share word has 16 bits for a chunk index).
+  static constexpr std::size_t max_chunks = 0xffff;
+  // How long a waiting thread spins before it sleeps: a worker for the next
+  // job, the caller for chunks still running. Measured (2 cores, md and DEM
+  // models at N = 500..3000, tests/bench/bench_loaded): see parallel.hpp.
+  static constexpr std::chrono::microseconds spin_wait{20};
+
+  static ThreadPool& instance() { return *current(); }
+
+  // f(c) for every chunk c in [0, chunks), on the calling thread and at most
+  // threads - 1 workers; returns once all have run (true), or at once (false)
+  // when the pool is busy, without running any.
+  template <class F>
+  bool run(unsigned threads, std::size_t chunks, F& f) {
+    return run_erased(
+        threads, chunks, [](void* context, std::size_t c) { (*static_cast<F*>(context))(c); }, &f);
+  }
+
+  // Workers started so far.
+  unsigned worker_count() const { return started_.load(std::memory_order_relaxed); }
+
+ private:
+  using Task = void (*)(void* context, std::size_t chunk);
+
+  // The chunks of a job are dealt into one share per thread, consecutive
+  // chunks each. A thread takes the chunks of its own share from the front,
+  // then those left in the others' from the back, so that two threads touch
+  // the same cache line only when one has run out of its own work (on the
+  // 2-core machine of tests/bench, handing a cache line to the other core
+  // costs ~200 ns, as much as ~50 iterations of a light loop).
+  //
+  // A share word: job generation (32 bits) | front (16) | back (16); chunks
+  // front .. back - 1 are unclaimed. A chunk is claimed by one compare-exchange
+  // on the whole word, so a thread that read an older job's word can never
+  // claim a chunk of a newer one (the generation would have to wrap around
+  // 2^32 jobs between its load and its compare-exchange).
+  static std::uint32_t generation(std::uint64_t word) {
+    return static_cast<std::uint32_t>(word >> 32);
+  }
+  static std::size_t front(std::uint64_t word) { return (word >> 16) & 0xffffu; }
+  static std::size_t back(std::uint64_t word) { return word & 0xffffu; }
+  static std::uint64_t share_word(std::uint32_t job, std::size_t front, std::size_t back) {
+    return std::uint64_t{job} << 32 | std::uint64_t{front} << 16 | std::uint64_t{back};
+  }
+
+  // Each on a cache line of its own.
+  struct alignas(64) Share {
+    std::atomic<std::uint64_t> word{0};
+  };
+  struct alignas(64) Job {
+    // generation (32 bits) | threads taking part (32): what workers wait on.
+    std::atomic<std::uint64_t> word{0};
+    // Written before word (under dispatch_), read after a claim: a claimed
+    // chunk keeps the job from ending, so they stay as published.
+    Task task = nullptr;
+    void* context = nullptr;
+    std::size_t chunks = 0;
+    std::atomic<bool> failed{false};
+  };
+  struct alignas(64) Done {
+    std::atomic<std::size_t> chunks{0};  // chunks of the job finished
+    std::atomic<bool> caller_sleeps{false};
+  };
+
+  ThreadPool() = default;
+
+  // Never destroyed (see above). A forked child gets a pool of its own: it
+  // has none of the parent's workers, and may have copied a mutex that one
+  // of them held.
+  static ThreadPool*& current() {
+    static ThreadPool* pool = [] {
+#if defined(__unix__) || defined(__APPLE__)
+      pthread_atfork(nullptr, nullptr, [] { current() = new ThreadPool; });
+#endif
+      return new ThreadPool;
+    }();
+    return pool;
+  }
+
+  static bool& inside_job() {
+    thread_local bool inside = false;
+    return inside;
+  }
+
+  bool run_erased(unsigned threads, std::size_t chunks, Task task, void* context) {
+    if (inside_job() || chunks == 0 || chunks > max_chunks) return false;
+    std::unique_lock<std::mutex> lock(dispatch_, std::try_to_lock);
+    if (!lock.owns_lock()) return false;
+    inside_job() = true;
+    struct Leave {
+      ~Leave() { inside_job() = false; }
+    } leave;
+    threads = start_workers(std::min<std::size_t>({threads, max_threads, chunks}) - 1) + 1;
+
+    const std::uint32_t job = ++generation_;
+    job_.task = task;
+    job_.context = context;
+    job_.chunks = chunks;
+    job_.failed.store(false, std::memory_order_relaxed);
+    error_ = nullptr;
+    done_.chunks.store(0, std::memory_order_relaxed);
+    const std::size_t size = chunks / threads, longer = chunks % threads;
+    for (unsigned k = 0, first = 0; k < threads; ++k) {
+      const unsigned stop = first + static_cast<unsigned>(size + (k < longer ? 1 : 0));
+      shares_[k].word.store(share_word(job, first, stop), std::memory_order_relaxed);
+      first = stop;
+    }
+    job_.word.store(std::uint64_t{job} << 32 | threads, std::memory_order_seq_cst);
+    if (sleepers_.load(std::memory_order_seq_cst) > 0) {
+      { std::lock_guard<std::mutex> sleep(sleep_mutex_); }
+      wake_.notify_all();
+    }
+    work(0, job, threads);
+    wait_until_done(chunks);
+    if (error_) std::rethrow_exception(error_);
+    return true;
+  }
+
+  // Starts workers until there are at least `count` (fewer if the system
+  // refuses); returns how many of them, at most `count`, a job can have.
+  unsigned start_workers(std::size_t count) {
+    unsigned have = started_.load(std::memory_order_relaxed);
+    for (; have < count; ++have) {
+      try {
+        std::thread(&ThreadPool::worker, this, have + 1, generation_).detach();
+      } catch (const std::system_error&) {
+        break;
+      }
+      started_.store(have + 1, std::memory_order_relaxed);
+    }
+    return static_cast<unsigned>(std::min<std::size_t>(have, count));
+  }
+
+  // Claims a chunk of share k of the job: from the front (the share's own
+  // thread) or the back (another); the chunk, or none (-1).
+  std::ptrdiff_t claim(unsigned k, std::uint32_t job, bool own) {
+    std::atomic<std::uint64_t>& word = shares_[k].word;
+    std::uint64_t w = word.load(std::memory_order_relaxed);
+    for (;;) {
+      const std::size_t f = front(w), b = back(w);
+      if (generation(w) != job || f >= b) return -1;
+      const std::uint64_t claimed = own ? share_word(job, f + 1, b) : share_word(job, f, b - 1);
+      if (word.compare_exchange_weak(w, claimed, std::memory_order_acquire,
+                                     std::memory_order_relaxed))
+        return static_cast<std::ptrdiff_t>(own ? f : b - 1);
+    }
+  }
+
+  // Thread `self` (0: the caller) runs chunks of the job until none is left
+  // unclaimed: its own share's, then the others'.
+  void work(unsigned self, std::uint32_t job, unsigned threads) {
+    std::size_t finished = 0, chunks = 0;
+    for (unsigned step = 0; step < threads; ++step) {
+      const unsigned k = (self + step) % threads;
+      for (std::ptrdiff_t c; (c = claim(k, job, step == 0)) >= 0; ++finished) {
+        chunks = job_.chunks;
+        if (job_.failed.load(std::memory_order_relaxed)) continue;
+        try {
+          job_.task(job_.context, static_cast<std::size_t>(c));
+        } catch (...) {
+          std::lock_guard<std::mutex> guard(error_mutex_);
+          if (!error_) error_ = std::current_exception();
+          job_.failed.store(true, std::memory_order_relaxed);
+        }
+      }
+    }
+    if (finished == 0) return;
+    // After this the job may end, and its fields change: touch none of them.
+    if (done_.chunks.fetch_add(finished, std::memory_order_seq_cst) + finished == chunks &&
+        done_.caller_sleeps.load(std::memory_order_seq_cst)) {
+      { std::lock_guard<std::mutex> sleep(sleep_mutex_); }
+      finished_.notify_one();
+    }
+  }
+
+  // pred() within spin_wait of spinning, or false.
+  template <class Pred>
+  static bool spin_until(Pred pred) {
+    const auto deadline = std::chrono::steady_clock::now() + spin_wait;
+    for (;;) {
+      for (int k = 0; k < 64; ++k) {
+        if (pred()) return true;
+        cpu_relax();
+      }
+      if (std::chrono::steady_clock::now() >= deadline) return pred();
+    }
+  }
+
+  void wait_until_done(std::size_t chunks) {
+    const auto done = [&] { return done_.chunks.load(std::memory_order_acquire) == chunks; };
+    if (spin_until(done)) return;
+    done_.caller_sleeps.store(true, std::memory_order_seq_cst);
+    if (!done()) {
+      std::unique_lock<std::mutex> sleep(sleep_mutex_);
+      finished_.wait(sleep, done);
+    }
+    done_.caller_sleeps.store(false, std::memory_order_relaxed);
+  }
+
+  // Worker `index` (1, 2, ...): takes part in every job of more than `index`
+  // threads, from the first job after generation `seen`.
+  void worker(unsigned index, std::uint32_t seen) {
+    inside_job() = true;  // a nested parallel_for runs serially
+    const auto fresh = [&] {
+      return generation(job_.word.load(std::memory_order_seq_cst)) != seen;
+    };
+    for (;;) {
+      if (!spin_until(fresh)) {
+        sleepers_.fetch_add(1, std::memory_order_seq_cst);
+        {
+          std::unique_lock<std::mutex> sleep(sleep_mutex_);
+          wake_.wait(sleep, fresh);
+        }
+        sleepers_.fetch_sub(1, std::memory_order_relaxed);
+      }
+      const std::uint64_t word = job_.word.load(std::memory_order_acquire);
+      seen = generation(word);
+      const auto threads = static_cast<unsigned>(word & 0xffffffffu);
+      if (index < threads) work(index, seen, threads);
+    }
+  }
+
+  std::mutex dispatch_;           // held by the caller for the whole of a job
+  std::uint32_t generation_ = 0;  // of the last job (under dispatch_)
+  std::atomic<unsigned> started_{0};
+
+  Job job_;
+  Share shares_[max_threads];
+  Done done_;
+  std::mutex error_mutex_;
+  std::exception_ptr error_;
+
+  std::mutex sleep_mutex_;
+  std::condition_variable wake_;      // workers: a new job
+  std::condition_variable finished_;  // the caller: the last chunk is done
+  std::atomic<unsigned> sleepers_{0};
+};
+
+}  // namespace partc::detail
