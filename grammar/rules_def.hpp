@@ -159,6 +159,8 @@ struct observable_decl_id : locate {};
 struct timestep_decl_id : locate {};
 struct output_decl_id : locate {};
 struct target_id : locate {};
+struct solve_statement_id : locate {};
+struct block_statement_id : locate {};
 struct step_number_id : locate {};
 struct var_decl_id : locate {};
 struct fn_decl_id : locate {};
@@ -220,6 +222,8 @@ x3::rule<class timestep_decl_text_id, ast::TimestepDecl> const timestep_decl_tex
     "a timestep declaration";
 x3::rule<output_decl_id, ast::OutputDecl> const output_decl = "an output declaration";
 x3::rule<target_id, ast::Target> const target = "a variable like v[i], or an observable";
+x3::rule<solve_statement_id, ast::SolveStatement> const solve_statement = "a solve statement";
+x3::rule<block_statement_id, ast::BlockStatement> const block_statement = "a statement";
 x3::rule<step_number_id, ast::Identifier> const step_number = "step";
 x3::rule<class step_number_text_id, ast::Identifier> const step_number_text = "step";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
@@ -282,7 +286,8 @@ auto const set_step_name = [](auto& ctx) { _val(ctx).name = "step"; };
 x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
   s.add("model")("dim")("domain")("param")("const")("observable")("timestep")("output")("every")(
-      "fn")("particles")("schedule")("init")("step")("and")("or")("not")("true")("false")("in");
+      "fn")("particles")("schedule")("init")("step")("solve")("and")("or")("not")("true")("false")(
+      "in");
   return s;
 }();
 auto const word_char = alnum | char_('_');
@@ -379,6 +384,13 @@ auto const statement_name = &(identifier >> ':') >> identifier >> ':';
 auto const assignment_def = -statement_name >> target > assign_op > expression > -lit(';');
 auto const target_def = identifier >> -('[' > identifier > ']');
 
+// block_statement = solve_statement | assignment ;
+// solve_statement = [ identifier , ":" ] , "solve" , target , ":" , expression , "=" ,
+//                   expression , [ ";" ] ;
+auto const block_statement_def = solve_statement | assignment;
+auto const solve_statement_def = -statement_name >> keyword("solve") > target > ':' > expression >
+                                 '=' > expression > -lit(';');
+
 // model_decl = "model" , identifier ;
 auto const model_decl_def = model_decl_text;
 auto const model_decl_text_def = (keyword("model") > identifier)[set_model_name];
@@ -432,7 +444,7 @@ auto const end_of_vars_def = lit('}');
 
 // stage_block = ( "init" | "step" ) , [ identifier ] , "{" , { assignment } , "}" ;
 auto const stage_block_def = (keyword_string("init") | keyword_string("step")) > -identifier >
-                             '{' > *assignment > end_of_block;
+                             '{' > *block_statement > end_of_block;
 auto const end_of_block_def = lit('}');
 
 // schedule_block = "schedule" , "{" , { schedule_item } , "}" ;
@@ -464,7 +476,8 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     additive, additive_tail, multiplicative, multiplicative_tail, unary, negation,
                     postfix, primary, norm, call, argument, label_binding, assignment, model_decl,
                     dim_decl, domain_decl, tuple, param_decl, const_decl, observable_decl,
-                    timestep_decl, timestep_decl_text, output_decl, target, step_number,
+                    timestep_decl, timestep_decl_text, output_decl, target, solve_statement,
+                    block_statement, step_number,
                     step_number_text, fn_decl, fn_param, schedule_block,
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)

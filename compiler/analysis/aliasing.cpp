@@ -60,6 +60,11 @@ AliasReport detect_aliasing(const ir::Model& model, const UniformSumReport& unif
                                     ": one value, computed once"});
         continue;
       }
+      if (st.solve_operator) {
+        facts.push_back({false, model.sets[st.set].vars[st.var].name +
+                                    " of every particle at once, from a linear system"});
+        continue;
+      }
       FindsOtherParticleReads finder(st, uniform_sums);
       finder.visit(st.value);
       AliasFact fact;

@@ -169,7 +169,10 @@ NeighbourhoodReport find_neighbourhoods(const ir::Model& model, const std::strin
   NeighbourhoodReport report;
   AccumulationFinder finder(report, source);
   for (const ir::Stage& stage : model.stages)
-    for (const ir::Statement& st : stage.statements) finder.visit(st.value);
+    for (const ir::Statement& st : stage.statements) {
+      finder.visit(st.value);
+      finder.visit(st.solve_operator);
+    }
   return report;
 }
 

@@ -41,7 +41,12 @@ void check_schedule(const ir::Model& model, const NeighbourhoodReport& neighbour
       if (st.schedule.loc.end == 0) continue;
       NeighbourhoodSums sums(neighbourhoods, st);
       sums.visit(st.value);
-      if (!sums.found)
+      sums.visit(st.solve_operator);
+      const bool searching = st.schedule.skin || st.schedule.search != ir::SearchChoice::Auto;
+      if (st.solve_operator && st.schedule.skin)
+        errors.push_back({st.schedule.loc, "a solve takes no skin",
+                          "its matrix is assembled once per solve; schedule its search instead"});
+      else if (searching && !sums.found)
         errors.push_back({st.schedule.loc,
                           "statement '" + st.name + "' has no neighbourhood sum to schedule",
                           "search and skin apply to sums whose condition bounds |dx|, "

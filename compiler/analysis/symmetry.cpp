@@ -287,9 +287,9 @@ PairSymmetryReport find_pair_symmetry(const ir::Model& model) {
   PairSymmetryReport report;
   for (const ir::Stage& stage : model.stages)
     for (const ir::Statement& st : stage.statements)
-      for (const ir::Accumulate* acc : ir::accumulations_in(st.value))
-        report[acc->id] = st.observable >= 0
-                              ? PairSymmetryFact{false, 0, "an observable's sum: one particle"}
+      for (const ir::Accumulate* acc : ir::accumulations_in(st))
+        report[acc->id] = st.observable >= 0 || st.solve_operator
+                              ? PairSymmetryFact{false, 0, "an observable's sum, or a solve's operator"}
                               : judge(model, st, *acc);
   return report;
 }

@@ -44,6 +44,8 @@ UniformSumReport find_uniform_sums(const ir::Model& model) {
   UniformSumReport report;
   for (const ir::Stage& stage : model.stages)
     for (const ir::Statement& st : stage.statements) {
+      for (const ir::Accumulate* acc : ir::accumulations_in(st.solve_operator))
+        report[acc->id] = {false, "a sum in the operator of a solve: one row per particle"};
       for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
         FindsReadOfI reads(model, st);
         reads.visit(acc->condition);

@@ -105,6 +105,20 @@ struct Assignment : Located {
   Chain value;
 };
 
+// solve w[i]: operator = rhs, the operator linear in w (sums of
+// coefficient * w[j], and w[i] itself): a linear system for every w at once.
+struct SolveStatement : Located {
+  boost::optional<Identifier> name;  // for the schedule, which chooses the solver
+  Target unknown;
+  Chain lhs;
+  Chain rhs;
+};
+
+struct BlockStatement : x3::variant<Assignment, SolveStatement> {
+  using base_type::base_type;
+  using base_type::operator=;
+};
+
 struct ModelDecl : Located {
   Identifier name;
 };
@@ -164,7 +178,7 @@ struct FnDecl : Located {
 struct StageBlock : Located {
   std::string kind;
   boost::optional<Identifier> set;
-  std::vector<Assignment> body;
+  std::vector<BlockStatement> body;
 };
 
 // schedule { force: search = kd_tree, skin = 0.3 }: how named statements

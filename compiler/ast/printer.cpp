@@ -103,9 +103,15 @@ struct Printer {
   }
   std::string operator()(const StageBlock& n) const {
     std::string out = "(" + n.kind + (n.set ? " " + n.set->name : "") + ") " + at(n);
-    for (const Assignment& a : n.body)
-      out += "\n  (" + (a.name ? a.name->name + ": " : std::string()) + a.op + " " +
-             (*this)(a.target) + " " + (*this)(a.value) + ") " + at(a);
+    for (const BlockStatement& s : n.body) {
+      if (auto a = boost::get<Assignment>(&s))
+        out += "\n  (" + (a->name ? a->name->name + ": " : std::string()) + a->op + " " +
+               (*this)(a->target) + " " + (*this)(a->value) + ") " + at(*a);
+      if (auto solve = boost::get<SolveStatement>(&s))
+        out += "\n  (" + (solve->name ? solve->name->name + ": " : std::string()) + "solve " +
+               (*this)(solve->unknown) + " " + (*this)(solve->lhs) + " " + (*this)(solve->rhs) +
+               ") " + at(*solve);
+    }
     return out;
   }
   std::string operator()(const ScheduleBlock& n) const {

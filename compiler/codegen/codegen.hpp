@@ -4,6 +4,7 @@
 #include <string>
 
 #include "analysis/aliasing.hpp"
+#include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
 #include "analysis/symmetry.hpp"
 #include "analysis/uniform_sums.hpp"
@@ -23,6 +24,7 @@ struct ModelFacts {
   NeighbourhoodReport neighbourhoods;
   PairSymmetryReport symmetry;
   UniformSumReport uniform_sums;
+  LinearOperatorReport linear_operators;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

@@ -31,7 +31,8 @@ void ModelEmitter::plan_kernels() {
                                      ? m_.observables[st.observable].name
                                      : (m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "") +
                                            m_.sets[st.set].vars[st.var].name;
-      kernels_.push_back({members_.fresh(stage_name + "_" + target), &st, &facts_.aliasing[g][k]});
+      kernels_.push_back({members_.fresh(stage_name + "_" + target), &st, &facts_.aliasing[g][k],
+                          {static_cast<int>(g), static_cast<int>(k)}});
       kernel_stage_.push_back(stage.kind);
     }
   }
@@ -55,6 +56,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   const int home = st.set;
   StatementUses uses;
   uses.visit(st.value);
+  uses.visit(st.solve_operator);
 
   // Names local to this kernel: the model's own, then ours.
   NameTable locals;
@@ -121,6 +123,7 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (facts_.uniform_sums.at(acc->id).once)
       comment("  " + facts_.uniform_sums.at(acc->id).reason);
   }
+  if (st.solve_operator) comment(facts_.linear_operators.at(k.position).reason);
   comment(k.alias->reason);
   linef("void {}() {{", k.name);
   kernel_constants(st, uses, names, locals);
@@ -155,6 +158,12 @@ void ModelEmitter::kernel(const Kernel& k) {
     return;
   }
   linef("const std::size_t {} = {}.size();", count, set_member_[home]);
+  if (st.solve_operator) {
+    solve_body(k, names, locals, count);
+    line("}");
+    line("");
+    return;
+  }
   std::string buffer;
   if (k.alias->buffered) {
     buffer = buffer_member(home, st.var);

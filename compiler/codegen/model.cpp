@@ -53,7 +53,8 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   for (const char* api :
        {"params", "set_seed", "step_count", "param_info", "set_param", "init", "load", "step",
         "for_each_set", "search_report", "check_finite", "compute_constants", "observables", "time",
-        "log_columns", "log_every", "log_row", "start_observables"})
+        "log_columns", "log_every", "log_row", "solve_report", "set_matrix_market",
+        "matrix_market_"})
     members_.reserve(api);
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
@@ -112,6 +113,10 @@ void ModelEmitter::plan_searches() {
     for (const Statement& st : stage.statements) {
       StatementUses uses;
       uses.visit(st.value);
+      uses.visit(st.solve_operator);
+      if (st.solve_operator)
+        solve_results_[&st] = members_.fresh(
+            (st.name.empty() ? m_.sets[st.set].vars[st.var].name : st.name) + "_solve_");
       for (const Accumulate* acc : uses.accumulations) {
         if (facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours) continue;
         if (st.schedule.skin) {
@@ -163,6 +168,9 @@ void ModelEmitter::header() {
   if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
+  if (!solve_results_.empty())
+    for (const char* h : {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
+      headers.push_back(h);
   std::sort(headers.begin(), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
   line("");
@@ -231,6 +239,7 @@ void ModelEmitter::public_api() {
   step();
   for_each_set();
   search_report();
+  solve_report();
   log();
   line("");
   line("// Throws partc::NumericalError naming the first NaN or Inf found.");
@@ -370,6 +379,24 @@ void ModelEmitter::search_report() {
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
   line("return report;");
   line("}");
+}
+
+// Each solve's last result, for the driver's summary; where to write the
+// assembled systems (Matrix Market), for users who solve them elsewhere.
+void ModelEmitter::solve_report() {
+  if (solve_results_.empty()) return;
+  line("// Each solve's last result: method, size, condition or iterations, residual, time.");
+  line("std::vector<std::string> solve_report() const {");
+  line("std::vector<std::string> report;");
+  for (const auto& [st, result] : solve_results_) {
+    linef("if ({0}.n > 0) report.push_back({0}.summary());", result);
+    linef("if (!{0}.warning.empty()) report.push_back(\"warning: \" + {0}.warning);", result);
+  }
+  line("return report;");
+  line("}");
+  line("// Solves from now on also write their matrix and right side to PREFIX_w.mtx and");
+  line("// PREFIX_w_rhs.mtx (Matrix Market); \"\" stops it.");
+  line("void set_matrix_market(std::string prefix) { matrix_market_ = std::move(prefix); }");
 }
 
 bool ModelEmitter::has_user_observables() const {
@@ -564,6 +591,9 @@ void ModelEmitter::state() {
   for (const auto& [st, lists] : lists_)
     linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
           source_text(st->schedule.skin->loc));
+  for (const auto& [st, result] : solve_results_)
+    linef("partc::SolveResult {};  // the last solve of {}", result, source_line(st->loc));
+  if (!solve_results_.empty()) line("std::string matrix_market_;  // \"\": no Matrix Market files");
   for (const auto& [id, sums] : pair_sums_)
     linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second,
           sums.first);

@@ -129,6 +129,7 @@ class ModelEmitter {
   void step();
   void for_each_set();
   void search_report();
+  void solve_report();
   void start_clock();
   bool has_user_observables() const;
   void log();
@@ -150,6 +151,7 @@ class ModelEmitter {
     std::string name;
     const Statement* st;
     const AliasFact* alias;
+    std::pair<int, int> position;  // (stage, statement)
   };
   void plan_kernels();
   std::vector<std::string> kernel_names(StageKind kind);
@@ -193,6 +195,9 @@ class ModelEmitter {
                  NameTable& locals, const std::string& walk, const std::string& kernel);
   std::string pair_sums_member(const Accumulate& acc, const std::string& kernel);
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
+  // codegen/solve.cpp: a solve statement's system, assembled and solved.
+  void solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
+                  const std::string& count);
 
   // ---- state ------------------------------------------------------------
 
@@ -209,6 +214,7 @@ class ModelEmitter {
   std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
   std::map<SearchKey, std::string> searches_;
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
+  std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
   std::vector<StageKind> kernel_stage_;
   std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element

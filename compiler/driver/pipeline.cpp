@@ -20,6 +20,8 @@ Compilation analyse(const SourceFile& file) {
   c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
   c.facts.symmetry = find_pair_symmetry(c.model);
+  // A solve's matrix: dense or sparse as its sums' neighbourhoods say.
+  c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
   return c;
@@ -37,7 +39,10 @@ std::string explain(const Compilation& c, const SourceFile& file) {
       out += fmt::format("{}:{}: {} {}\n", file.path(), at.line,
                          stage.kind == ir::StageKind::Init ? "init" : "step", file.slice(st.loc));
       out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
-      for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
+      if (st.solve_operator)
+        out += "  solve: " +
+               c.facts.linear_operators.at({static_cast<int>(g), static_cast<int>(k)}).reason + "\n";
+      for (const ir::Accumulate* acc : ir::accumulations_in(st)) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
         out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
                            st.labels[acc->label].name, fact.reason);

@@ -289,9 +289,16 @@ const char* assign_op_spelling(AssignOp op);
 // model's schedule says so; otherwise the runtime decides.
 enum class SearchChoice { Auto, BruteForce, CellList, KdTree };
 const char* search_choice_name(SearchChoice c);  // as .part spells it
+// How a solve statement solves: auto is LU for a dense operator, BiCGSTAB
+// for a sparse one.
+enum class SolverChoice { Auto, Lu, Cg, Bicgstab, Gmres };
+const char* solver_choice_name(SolverChoice c);  // as .part spells it
 struct Schedule {
   SearchChoice search = SearchChoice::Auto;
   Expr skin;  // non-null: Verlet lists with this skin, reused across steps
+  SolverChoice solver = SolverChoice::Auto;
+  Expr tolerance;       // of an iterative solver; null: 1e-10
+  Expr max_iterations;  // of an iterative solver; null: 2n
   Location loc;
 };
 
@@ -304,6 +311,9 @@ struct Statement {
   int set;
   int var;
   int observable = -1;  // >= 0: the target is Model::observables[observable]
+  // Non-null: solve for the target var of every particle at once, so that
+  // solve_operator (linear in it; analysis/linear_operator.cpp) = value.
+  Expr solve_operator;
   AssignOp op;
   Expr value;
   std::vector<Label> labels;  // [0] is the statement's own label (i)

@@ -83,6 +83,17 @@ const char* search_choice_name(SearchChoice c) {
   return "?";
 }
 
+const char* solver_choice_name(SolverChoice c) {
+  switch (c) {
+    case SolverChoice::Auto: return "auto";
+    case SolverChoice::Lu: return "lu";
+    case SolverChoice::Cg: return "cg";
+    case SolverChoice::Bicgstab: return "bicgstab";
+    case SolverChoice::Gmres: return "gmres";
+  }
+  return "?";
+}
+
 int ParticleSet::find_var(const std::string& var_name) const {
   for (std::size_t k = 0; k < vars.size(); ++k)
     if (vars[k].name == var_name) return static_cast<int>(k);

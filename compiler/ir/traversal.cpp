@@ -128,4 +128,10 @@ std::vector<const Accumulate*> accumulations_in(const Expr& e) {
   return finder.found;
 }
 
+std::vector<const Accumulate*> accumulations_in(const Statement& st) {
+  std::vector<const Accumulate*> all = accumulations_in(st.value);
+  for (const Accumulate* acc : accumulations_in(st.solve_operator)) all.push_back(acc);
+  return all;
+}
+
 }  // namespace partc::ir

@@ -53,5 +53,7 @@ class Visitor {
 
 // The accumulations in e, in reading order.
 std::vector<const Accumulate*> accumulations_in(const Expr& e);
+// Those of a statement: its value's, then its solve operator's.
+std::vector<const Accumulate*> accumulations_in(const Statement& st);
 
 }  // namespace partc::ir

@@ -124,12 +124,14 @@ class Sema {
   std::vector<std::string> set_names() const;
   ir::Statement check_statement(const ast::Assignment& a, int set_index);
   ir::Statement check_observable_statement(const ast::Assignment& a, int set_index);
+  ir::Statement check_solve(const ast::SolveStatement& s, int set_index);
   ir::Expr check_assigned_value(const ast::Assignment& a, ir::AssignOp op, Type type,
                                 const std::string& what, Scope& scope);
   void not_assignable(const ast::Identifier& name, const ir::ParticleSet& set);
 
   void check_schedule(const ast::ScheduleItem& item);
   ir::SearchChoice search_choice(const ast::Chain& value);
+  ir::SolverChoice solver_choice(const ast::Chain& value);
   static std::vector<std::string> var_names(const ir::ParticleSet& set);
 
   // ---- expressions.cpp: conversions, operators, names ---------------------

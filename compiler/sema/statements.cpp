@@ -20,18 +20,21 @@ void Sema::check_stage(const ast::StageBlock& block) {
     return;
   }
   const int stage_index = static_cast<int>(model_.stages.size());
-  for (const ast::Assignment& a : block.body)
+  for (const ast::BlockStatement& s : block.body)
     guarded([&] {
-      stage.statements.push_back(check_statement(a, stage.set));
-      if (!a.name) return;
+      const auto* a = boost::get<ast::Assignment>(&s);
+      const auto* solve = boost::get<ast::SolveStatement>(&s);
+      stage.statements.push_back(a ? check_statement(*a, stage.set) : check_solve(*solve, stage.set));
+      const boost::optional<ast::Identifier>& name = a ? a->name : solve->name;
+      if (!name) return;
       const auto [it, fresh] = statement_names_.emplace(
-          a.name->name,
-          StatementRef{stage_index, static_cast<int>(stage.statements.size() - 1), a.name->loc});
+          name->name,
+          StatementRef{stage_index, static_cast<int>(stage.statements.size() - 1), name->loc});
       if (!fresh)
         fail(
-            a.name->loc, "a second statement named " + quoted(a.name->name),
+            name->loc, "a second statement named " + quoted(name->name),
             "the first is on line " + std::to_string(file_.line_column(it->second.loc.begin).line));
-      stage.statements.back().name = a.name->name;
+      stage.statements.back().name = name->name;
     });
   model_.stages.push_back(std::move(stage));
 }
@@ -41,8 +44,10 @@ int Sema::resolve_stage_set(const ast::StageBlock& block) {
   if (model_.sets.empty()) throw SemaError{{}, true};  // "a model needs a set" says it
   // A block that assigns only observables needs no set.
   const bool observables_only =
-      std::all_of(block.body.begin(), block.body.end(),
-                  [](const ast::Assignment& a) { return !a.target.label; });
+      std::all_of(block.body.begin(), block.body.end(), [](const ast::BlockStatement& s) {
+        const auto* a = boost::get<ast::Assignment>(&s);
+        return a && !a->target.label;
+      });
   if (model_.sets.size() != 1 && observables_only) return -1;
   if (model_.sets.size() != 1)
     fail(block.loc, "this model has several particle sets: name the one this " + block.kind +
@@ -187,6 +192,47 @@ ir::Statement Sema::check_observable_statement(const ast::Assignment& a, int set
   return st;
 }
 
+// solve w[i]: operator = rhs. The operator's linearity in w is decided by
+// analysis/linear_operator.cpp; here, names and types.
+ir::Statement Sema::check_solve(const ast::SolveStatement& s, int set_index) {
+  if (!s.unknown.label)
+    fail(s.unknown.loc, "a solve is for a particle variable: write solve " + s.unknown.var.name +
+                            "[i]: ...");
+  if (set_index < 0)
+    fail(s.unknown.loc, "this model has several particle sets: name the one this block updates",
+         "as in 'step " + model_.sets[0].name + " { ... }'");
+  const ir::ParticleSet& set = model_.sets[set_index];
+  ir::Statement st;
+  st.set = set_index;
+  st.loc = s.loc;
+  st.line = file_.line_column(s.loc.begin).line;
+  st.var = set.find_var(s.unknown.var.name);
+  if (st.var < 0) not_assignable(s.unknown.var, set);
+  if (st.var < 0)
+    fail(s.unknown.var.loc, quoted(s.unknown.var.name) + " is not a variable of particle set " +
+                                set.name + suggestion(s.unknown.var.name, var_names(set)));
+  if (st.var < ir::kFirstUserVar)
+    fail(s.unknown.var.loc, "cannot solve for the builtin variable " + quoted(s.unknown.var.name));
+  if (set.vars[st.var].type != Type::Real)
+    fail(s.unknown.var.loc, "a solve is for a real variable, not " + a_type(set.vars[st.var].type),
+         "solve each component of a vec as a real variable of its own");
+  st.labels.push_back({s.unknown.label->name, set_index});
+  statement_target_ = s.unknown.loc;
+  st.op = ir::AssignOp::Set;
+  Scope scope;
+  scope.where = Scope::Where::Statement;
+  scope.context = "a solve";
+  scope.labels = &st.labels;
+  scope.bound = {0};
+  scope.observables = true;
+  st.solve_operator = check(s.lhs, scope);
+  if (!ir::is_numeric_scalar(st.solve_operator->type))
+    fail(s.lhs.loc, "the left side of a solve must be a number, not " +
+                        a_type(st.solve_operator->type));
+  st.value = convert(check(s.rhs, scope), Type::Real, s.rhs.loc, "the right side of a solve");
+  return st;
+}
+
 // The value of `target op= value`, checked against the target's type.
 ir::Expr Sema::check_assigned_value(const ast::Assignment& a, ir::AssignOp op, Type type,
                                     const std::string& what, Scope& scope) {
@@ -238,13 +284,41 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       if (auto value = evaluate_constant(skin, model_); value && !(*value >= 0))
         fail(option.value.loc, "the skin must not be negative");
       st.schedule.skin = skin;
+    } else if (option.key.name == "solver" || option.key.name == "tol" ||
+               option.key.name == "max_iterations") {
+      if (!st.solve_operator)
+        fail(option.key.loc, quoted(option.key.name) + " schedules a solve, and " +
+                                 quoted(st.name) + " is not one");
+      if (option.key.name == "solver") {
+        st.schedule.solver = solver_choice(option.value);
+        continue;
+      }
+      Scope scope;
+      scope.context = "a solver's " + option.key.name;
+      const bool tol = option.key.name == "tol";
+      Expr value = convert(check(option.value, scope), tol ? Type::Real : Type::Int,
+                           option.value.loc, "the solver's " + option.key.name);
+      if (auto v = evaluate_constant(value, model_); v && !(*v > 0))
+        fail(option.value.loc, "the solver's " + option.key.name + " must be positive");
+      (tol ? st.schedule.tolerance : st.schedule.max_iterations) = value;
     } else {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
-               suggestion(option.key.name, {"search", "skin"}),
-           "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH");
+               suggestion(option.key.name, {"search", "skin", "solver", "tol", "max_iterations"}),
+           "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH; for a "
+           "solve: solver = auto | lu | cg | bicgstab | gmres, tol = 1e-10, max_iterations = K");
     }
   }
+}
+
+ir::SolverChoice Sema::solver_choice(const ast::Chain& value) {
+  const ast::Operand* sole = ast::sole_operand(value);
+  const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+  for (ir::SolverChoice c : {ir::SolverChoice::Auto, ir::SolverChoice::Lu, ir::SolverChoice::Cg,
+                             ir::SolverChoice::Bicgstab, ir::SolverChoice::Gmres})
+    if (id && id->name == ir::solver_choice_name(c)) return c;
+  fail(value.loc, "unknown solver " + quoted(source_text(value.loc)),
+       "solvers: auto, lu (dense), cg (symmetric positive definite), bicgstab, gmres");
 }
 
 ir::SearchChoice Sema::search_choice(const ast::Chain& value) {

@@ -65,6 +65,7 @@ struct DriverOptions {
   std::int64_t every = 1;
   std::int64_t check_every = 1;
   std::string log;                         // "" = no CSV time series
+  std::string matrix_market;               // "" = no Matrix Market files of solves
   std::optional<std::int64_t> log_every;  // overrides the model's interval
   bool quiet = false;
 };
@@ -76,6 +77,13 @@ struct logs_observables : std::false_type {};
 template <class Model>
 struct logs_observables<Model, std::void_t<decltype(Model::log_columns())>> : std::true_type {};
 
+// Models with solve statements report them, and can write their systems.
+template <class Model, class = void>
+struct has_solves : std::false_type {};
+template <class Model>
+struct has_solves<Model, std::void_t<decltype(std::declval<const Model&>().solve_report())>>
+    : std::true_type {};
+
 template <class Model, class = void>
 struct has_time : std::false_type {};
 template <class Model>
@@ -86,7 +94,7 @@ inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
          " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--log FILE.csv]"
-         " [--log-every M] [--quiet] [--help]";
+         " [--log-every M] [--matrix-market PREFIX] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -192,6 +200,12 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
       } else {
         options.log_every = parse_count<std::int64_t>(option, value());
       }
+    } else if (option == "--matrix-market") {
+      if constexpr (!has_solves<Model>::value)
+        throw UsageError("option --matrix-market: model " + std::string(Model::model_name) +
+                         " has no solve statement");
+      options.matrix_market = value();
+      require_directory_of(option, options.matrix_market);
     } else if (option == "--vtk") {
       options.vtk_prefix = value();
       require_directory_of(option, options.vtk_prefix);
@@ -220,6 +234,9 @@ void print_help(std::ostream& out, const Model& model) {
        << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
        << "  --every M            VTK every M steps (default 1; step 0 is always written)\n"
        << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n";
+  if constexpr (has_solves<Model>::value)
+    text << "  --matrix-market P    write each solve's matrix and right side to P_NAME.mtx,\n"
+         << "                       P_NAME_rhs.mtx (Matrix Market)\n";
   if constexpr (logs_observables<Model>::value)
     text << "  --log FILE.csv       write the logged observables every step (columns: "
          << join(Model::log_columns()) << ")\n"
@@ -271,6 +288,8 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
            << "\n";
     });
   });
+  if constexpr (has_solves<Model>::value)
+    for (const std::string& line : model.solve_report()) text << line << "\n";
   const std::vector<SearchReport> searches = model.search_report();
   if (!searches.empty()) text << "neighbour searches:\n";
   for (const SearchReport& s : searches)
@@ -283,6 +302,7 @@ template <class Model>
 void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   model.set_seed(options.seed);
+  if constexpr (has_solves<Model>::value) model.set_matrix_market(options.matrix_market);
   if (options.inputs.empty()) {
     model.init();
   } else {

@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""The RBF examples' solves against dense NumPy solves of the same systems.
+
+    collocation_reference.py rbf PROGRAM     (examples/rbf_franke.part)
+    collocation_reference.py kansa PROGRAM   (examples/kansa_poisson.part)
+
+For each n, runs the generated program, reads its CSV output, and builds and
+solves the same collocation system independently with NumPy:
+- where cond(A) < 1e10, partc's values on the evaluation grid match those of
+  NumPy's solution to 1e-6 relative;
+- rbf: the interpolant reproduces f at the nodes to 1e-10 relative;
+- the error against the exact function falls as n grows.
+Prints a table; exit status 0 when all hold.
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+
+def franke(x, y):
+    return (0.75 * np.exp(-((9 * x - 2) ** 2 + (9 * y - 2) ** 2) / 4)
+            + 0.75 * np.exp(-((9 * x + 1) ** 2) / 49 - (9 * y + 1) / 10)
+            + 0.5 * np.exp(-((9 * x - 7) ** 2 + (9 * y - 3) ** 2) / 4)
+            - 0.2 * np.exp(-(9 * x - 4) ** 2 - (9 * y - 7) ** 2))
+
+
+def poisson_exact(x, y):
+    return np.sin(np.pi * x) * np.sin(np.pi * y)
+
+
+def grid_points(n):
+    """The examples' nodes: x = (k mod n, k // n) / (n - 1), in id order."""
+    k = np.arange(n * n)
+    return np.stack([k % n, k // n], axis=1) / (n - 1)
+
+
+def distances(a, b):
+    return np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2)
+
+
+def run(program, work, settings):
+    out = os.path.join(work, "run.csv")
+    args = [program, "--steps", "0", "--quiet", "--output", out]
+    for name, value in settings.items():
+        args += ["--set", f"{name}={value}"]
+    subprocess.run(args, check=True)
+
+    def read(set_name):
+        with open(out.replace(".csv", f"_{set_name}.csv"), newline="") as f:
+            rows = list(csv.DictReader(f))
+        return {key: np.array([float(r[key]) for r in rows]) for key in rows[0]}
+
+    return read("Node"), read("Grid")
+
+
+def rbf(n, nodes, grid, eps=3.0):
+    x = grid_points(n)
+    A = np.sqrt(1 + (eps * distances(x, x)) ** 2)
+    f = franke(x[:, 0], x[:, 1])
+    g = np.stack([grid["p_0"], grid["p_1"]], axis=1)
+    s = np.sqrt(1 + (eps * distances(g, x)) ** 2) @ np.linalg.solve(A, f)
+    error = np.sqrt(np.mean((grid["s"] - franke(g[:, 0], g[:, 1])) ** 2))
+    node_error = np.max(np.abs(nodes["s"] - f)) / np.max(np.abs(f))
+    return np.linalg.cond(A), grid["s"], s, error, node_error
+
+
+def kansa(n, nodes, grid, eps=6.0):
+    x = grid_points(n)
+    k = np.arange(n * n)
+    boundary = (k % n == 0) | (k % n == n - 1) | (k // n == 0) | (k // n == n - 1)
+    r = distances(x, x)
+    phi = np.exp(-(eps * r) ** 2)
+    laplace = (4 * eps ** 4 * r ** 2 - 4 * eps ** 2) * phi
+    A = np.where(boundary[:, None], phi, -laplace)
+    b = np.where(boundary, 0.0, 2 * np.pi ** 2 * poisson_exact(x[:, 0], x[:, 1]))
+    g = np.stack([grid["p_0"], grid["p_1"]], axis=1)
+    u = np.exp(-(eps * distances(g, x)) ** 2) @ np.linalg.solve(A, b)
+    error = np.max(np.abs(grid["u"] - poisson_exact(g[:, 0], g[:, 1])))
+    return np.linalg.cond(A), grid["u"], u, error, 0.0
+
+
+def main():
+    which, program = sys.argv[1], sys.argv[2]
+    cases = {"rbf": (rbf, (5, 8, 11, 14, 20), {"eps": 3, "m": 41}, "rms error"),
+             "kansa": (kansa, (10, 15, 20, 30), {"eps": 6, "basis": 0, "m": 41}, "max error")}
+    reference, sizes, settings, error_name = cases[which]
+    failures, errors = [], []
+    print(f"{which}: {'n':>4} {'cond(A)':>10} {error_name:>11} {'node error':>11} {'vs numpy':>10}")
+    with tempfile.TemporaryDirectory() as work:
+        for n in sizes:
+            nodes, grid = run(program, work, dict(settings, n=n))
+            if not np.allclose(np.stack([nodes["p_0"], nodes["p_1"]], axis=1), grid_points(n),
+                               atol=1e-15):
+                failures.append(f"n = {n}: the program's nodes are not the ones rebuilt here")
+            cond, ours, theirs, error, node_error = reference(n, nodes, grid)
+            versus = np.max(np.abs(ours - theirs)) / np.max(np.abs(theirs))
+            print(f"{which}: {n:>4} {cond:>10.2e} {error:>11.3e} {node_error:>11.2e} "
+                  f"{versus:>10.2e}{'' if cond < 1e10 else '  (not compared: cond >= 1e10)'}")
+            errors.append(error)
+            if cond < 1e10 and versus > 1e-6:
+                failures.append(f"n = {n}: partc's values differ from NumPy's by {versus:.2e}")
+            if node_error > 1e-10:
+                failures.append(f"n = {n}: node values reproduced only to {node_error:.2e}")
+    if any(b >= a for a, b in zip(errors, errors[1:])):
+        failures.append(f"the {error_name} does not fall with n: {errors}")
+    for failure in failures:
+        print("FAILED:", failure)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
