@@ -66,6 +66,7 @@ Expr Sema::check_call(const ast::Call& n, Scope& scope) {
     if (scope.function && name == scope.function->name)
       fail(n.callee.loc, "function " + quoted(name) + " calls itself",
            "functions are not recursive; write the repetition out");
+    follow_on_if_failed(name);
     std::vector<std::string> known = {"vec",     "if",     "sum",         "count",
                                       "uniform", "normal", "uniform_vec", "normal_vec"};
     for (const auto& [k, unused] : kFunctions) known.push_back(k);

@@ -11,6 +11,10 @@
 // Query contract: as BruteForce (brute_force.hpp), including its images: a
 // radius over half a periodic length reports every image within the radius.
 //
+// A radius of 0 or less (a model's |dx| < r with r = 0) searches within the
+// smallest positive double instead: the condition then holds for coincident
+// particles at most, and those are what that finds; it is not an error.
+//
 // Surprises: on the cell-list and tree paths build REORDERS the particle set
 // (set.permute(order)), so that j in f(j, dx) indexes the set's arrays; indices
 // taken before build are stale afterwards (ids are not). cell_count() is 0 off
@@ -77,7 +81,10 @@ class NeighbourSearch {
   explicit NeighbourSearch(Kind forced) : forced_(forced) {}
 
   template <class Set>
-  void build(const Domain<D>& domain, double radius, Set& set) {
+  void build(const Domain<D>& domain, double requested_radius, Set& set) {
+    const double radius = requested_radius > 0 || std::isnan(requested_radius)
+                              ? requested_radius  // NaN: check_search_arguments refuses it
+                              : std::numeric_limits<double>::min();
     const std::size_t n = set.positions().size();
     size_ = n;
     const CellGrid<D> grid(domain, radius, n);

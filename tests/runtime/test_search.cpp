@@ -352,3 +352,30 @@ TEST_CASE("the facade picks a k-d tree for tightly clustered points", "[search]"
   search.build(box, 0.02, uniform);
   CHECK(search.kind() == partc::NeighbourSearch<2>::Kind::cell_list);
 }
+
+TEST_CASE("facade: a radius of 0 or less finds coincident particles only", "[search][facade]") {
+  const Domain<2> box{Vec<2>{{0.0, 0.0}}, Vec<2>{{1.0, 1.0}}, {{true, true}}};
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> anywhere(0.0, 1.0);
+  partc::ParticleSet<2> set;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec<2> x{{anywhere(random), anywhere(random)}};
+    set.push_back(x);
+    if (i % 10 == 0) set.push_back(x);  // a twin at the same place
+  }
+  for (const double radius : {0.0, -0.5}) {
+    partc::NeighbourSearch<2> search;
+    search.build(box, radius, set);
+    std::size_t found = 0, coincident = 0;
+    for (std::size_t i = 0; i < set.size(); ++i)
+      search.for_each_near(i, [&](std::size_t j, const Vec<2>& dx) {
+        ++found;
+        coincident += dx[0] == 0 && dx[1] == 0;
+        CHECK(set.positions()[j] == set.positions()[i]);
+      });
+    CHECK(found == set.size() + 2 * 300);  // each particle itself, and each twin both ways
+    CHECK(coincident == found);
+  }
+  partc::NeighbourSearch<2> search;
+  CHECK_THROWS_AS(search.build(box, std::nan(""), set), std::invalid_argument);
+}
