@@ -67,8 +67,12 @@ class ThreadPool {
   // Most chunks in one job (a share word has 16 bits for a chunk index).
   static constexpr std::size_t max_chunks = 0xffff;
   // How long a waiting thread spins before it sleeps: a worker for the next
-  // job, the caller for chunks still running. Measured (2 cores, md and DEM
-  // models at N = 500..3000, tests/bench/bench_loaded): see parallel.hpp.
+  // job, the caller for chunks still running. Long enough to cover the gap
+  // between the loops of one kernel (a pair walk's two phases, the particle
+  // loop after it), short against a step's serial work (a cell-list build).
+  // 0, 5, 20, 50, 100 and 200 us were tried (tests/bench/bench_loaded, 2
+  // cores, md at N = 500 and 2000, DEM at 3000): none collapsed beside busy
+  // loops, and the differences were within the machine's noise (~15%).
   static constexpr std::chrono::microseconds spin_wait{20};
 
   static ThreadPool& instance() { return *current(); }
@@ -239,7 +243,10 @@ class ThreadPool {
     }
   }
 
-  // pred() within spin_wait of spinning, or false.
+  // pred() within spin_wait of spinning, or false. Between rounds the thread
+  // yields: if the thread it waits for (or any other) is queued on this core,
+  // that one runs rather than the spin; on an idle core a yield costs a
+  // system call.
   template <class Pred>
   static bool spin_until(Pred pred) {
     const auto deadline = std::chrono::steady_clock::now() + spin_wait;
@@ -249,6 +256,7 @@ class ThreadPool {
         cpu_relax();
       }
       if (std::chrono::steady_clock::now() >= deadline) return pred();
+      std::this_thread::yield();
     }
   }
 
