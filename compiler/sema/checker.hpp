@@ -122,6 +122,7 @@ class Sema {
   int resolve_stage_set(const ast::StageBlock& block);
   int set_named(const ast::Identifier& name);
   std::vector<std::string> set_names() const;
+  ir::Statement particle_statement(const ast::Target& target, Location loc, int set_index);
   ir::Statement check_statement(const ast::Assignment& a, int set_index);
   ir::Statement check_observable_statement(const ast::Assignment& a, int set_index);
   ir::Statement check_solve(const ast::SolveStatement& s, int set_index);

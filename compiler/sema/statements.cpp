@@ -24,7 +24,8 @@ void Sema::check_stage(const ast::StageBlock& block) {
     guarded([&] {
       const auto* a = boost::get<ast::Assignment>(&s);
       const auto* solve = boost::get<ast::SolveStatement>(&s);
-      stage.statements.push_back(a ? check_statement(*a, stage.set) : check_solve(*solve, stage.set));
+      stage.statements.push_back(a ? check_statement(*a, stage.set)
+                                   : check_solve(*solve, stage.set));
       const boost::optional<ast::Identifier>& name = a ? a->name : solve->name;
       if (!name) return;
       const auto [it, fresh] = statement_names_.emplace(
@@ -106,6 +107,32 @@ ir::AssignOp assign_op(const std::string& spelled) {
 
 }  // namespace
 
+// A statement that updates target.var[target.label] of every particle of the
+// block's set: its set, variable and label, or why there is none.
+ir::Statement Sema::particle_statement(const ast::Target& target, Location loc, int set_index) {
+  if (set_index < 0)
+    fail(target.loc, "this model has several particle sets: name the one this block updates",
+         "as in 'step " + model_.sets[0].name + " { ... }'");
+  const ir::ParticleSet& set = model_.sets[set_index];
+  ir::Statement st;
+  st.set = set_index;
+  st.loc = loc;
+  st.line = file_.line_column(loc.begin).line;
+  st.var = set.find_var(target.var.name);
+  if (st.var < 0) not_assignable(target.var, set);
+  if (st.var < 0)
+    fail(target.var.loc, quoted(target.var.name) + " is not a variable of particle set " +
+                             set.name + suggestion(target.var.name, var_names(set)));
+  const ast::Identifier& label = *target.label;
+  st.labels.push_back({label.name, set_index});
+  statement_target_ = target.loc;
+  for (const ir::ParticleSet& s : model_.sets)
+    if (s.find_var(label.name) >= 0 || names_.count(label.name))
+      fail(label.loc, "label " + quoted(label.name) +
+                          " has the name of a variable, param, const, observable or set");
+  return st;
+}
+
 ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
   if (!a.target.label) return check_observable_statement(a, set_index);
   const ast::Identifier& label = *a.target.label;
@@ -116,27 +143,9 @@ ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
              " is an observable, one value for the model: assign it "
              "without a label",
          "as in " + a.target.var.name + " = sum(" + label.name + " in P, ...)");
-  if (set_index < 0)
-    fail(a.target.loc, "this model has several particle sets: name the one this block updates",
-         "as in 'step " + model_.sets[0].name + " { ... }'");
-  const ir::ParticleSet& set = model_.sets[set_index];
-  ir::Statement st;
-  st.set = set_index;
-  st.loc = a.loc;
-  st.line = file_.line_column(a.loc.begin).line;
-  st.var = set.find_var(a.target.var.name);
-  if (st.var < 0) not_assignable(a.target.var, set);
-  if (st.var < 0)
-    fail(a.target.var.loc, quoted(a.target.var.name) + " is not a variable of particle set " +
-                               set.name + suggestion(a.target.var.name, var_names(set)));
-  const ir::Variable& var = set.vars[st.var];
+  ir::Statement st = particle_statement(a.target, a.loc, set_index);
+  const ir::Variable& var = model_.sets[set_index].vars[st.var];
   if (st.var == ir::kId) fail(a.target.var.loc, "'id' is read-only: particle ids never change");
-  st.labels.push_back({label.name, set_index});
-  statement_target_ = a.target.loc;
-  for (const ir::ParticleSet& s : model_.sets)
-    if (s.find_var(label.name) >= 0 || names_.count(label.name))
-      fail(label.loc, "label " + quoted(label.name) +
-                          " has the name of a variable, param, const, observable or set");
   st.op = assign_op(a.op);
 
   Scope scope;
@@ -196,28 +205,15 @@ ir::Statement Sema::check_observable_statement(const ast::Assignment& a, int set
 // analysis/linear_operator.cpp; here, names and types.
 ir::Statement Sema::check_solve(const ast::SolveStatement& s, int set_index) {
   if (!s.unknown.label)
-    fail(s.unknown.loc, "a solve is for a particle variable: write solve " + s.unknown.var.name +
-                            "[i]: ...");
-  if (set_index < 0)
-    fail(s.unknown.loc, "this model has several particle sets: name the one this block updates",
-         "as in 'step " + model_.sets[0].name + " { ... }'");
+    fail(s.unknown.loc,
+         "a solve is for a particle variable: write solve " + s.unknown.var.name + "[i]: ...");
+  ir::Statement st = particle_statement(s.unknown, s.loc, set_index);
   const ir::ParticleSet& set = model_.sets[set_index];
-  ir::Statement st;
-  st.set = set_index;
-  st.loc = s.loc;
-  st.line = file_.line_column(s.loc.begin).line;
-  st.var = set.find_var(s.unknown.var.name);
-  if (st.var < 0) not_assignable(s.unknown.var, set);
-  if (st.var < 0)
-    fail(s.unknown.var.loc, quoted(s.unknown.var.name) + " is not a variable of particle set " +
-                                set.name + suggestion(s.unknown.var.name, var_names(set)));
   if (st.var < ir::kFirstUserVar)
     fail(s.unknown.var.loc, "cannot solve for the builtin variable " + quoted(s.unknown.var.name));
   if (set.vars[st.var].type != Type::Real)
     fail(s.unknown.var.loc, "a solve is for a real variable, not " + a_type(set.vars[st.var].type),
          "solve each component of a vec as a real variable of its own");
-  st.labels.push_back({s.unknown.label->name, set_index});
-  statement_target_ = s.unknown.loc;
   st.op = ir::AssignOp::Set;
   Scope scope;
   scope.where = Scope::Where::Statement;
@@ -227,8 +223,8 @@ ir::Statement Sema::check_solve(const ast::SolveStatement& s, int set_index) {
   scope.observables = true;
   st.solve_operator = check(s.lhs, scope);
   if (!ir::is_numeric_scalar(st.solve_operator->type))
-    fail(s.lhs.loc, "the left side of a solve must be a number, not " +
-                        a_type(st.solve_operator->type));
+    fail(s.lhs.loc,
+         "the left side of a solve must be a number, not " + a_type(st.solve_operator->type));
   st.value = convert(check(s.rhs, scope), Type::Real, s.rhs.loc, "the right side of a solve");
   return st;
 }
