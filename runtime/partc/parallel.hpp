@@ -16,7 +16,7 @@
 // Surprises:
 // - OpenMP is used for its thread count only, not its parallel regions: on a
 //   machine where another program keeps a core busy, libgomp's spinning
-//   barrier made a DEM model 60x slower on 2 threads than on one, and its
+//   barrier made a DEM model 10-150x slower on 2 threads than on one, and its
 //   wait policy cannot be changed from inside the program (thread_pool.hpp).
 // - Small loops never reach the threads: handing out a job and waiting for
 //   it costs microseconds, more than a cheap pass over a few thousand
