@@ -160,7 +160,8 @@ class ThreadPool {
     struct Leave {
       ~Leave() { inside_job() = false; }
     } leave;
-    threads = start_workers(std::min<std::size_t>({threads, max_threads, chunks}) - 1) + 1;
+    threads =
+        start_workers(std::min<std::size_t>({std::max(threads, 1u), max_threads, chunks}) - 1) + 1;
 
     const std::uint32_t job = ++generation_;
     job_.task = task;

@@ -89,7 +89,8 @@ std::vector<unsigned char> state_bits(const Set& set) {
   std::vector<std::size_t> order(set.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   const auto& id = set.ids();
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
   std::vector<unsigned char> bits;
   const auto append = [&](const auto& values) {
     for (const std::size_t k : order) {
@@ -219,10 +220,13 @@ int main() {
 #endif
   std::printf("Load average before (1, 5, 15 min): %s\n\n", load_average().c_str());
   print_header();
-  model_row<Md>("md (examples/md.part)", 500, 2000, [](const Md& m) -> const auto& { return m.P(); });
-  model_row<Md>("md (examples/md.part)", 2000, 500, [](const Md& m) -> const auto& { return m.P(); });
-  model_row<DemGrains>("DEM grains (dem_grains.part)", 3000, 300,
-                       [](const DemGrains& m) -> const auto& { return m.G(); });
+  model_row<Md>(
+      "md (examples/md.part)", 500, 2000, [](const Md& m) -> const auto& { return m.P(); });
+  model_row<Md>(
+      "md (examples/md.part)", 2000, 500, [](const Md& m) -> const auto& { return m.P(); });
+  model_row<DemGrains>(
+      "DEM grains (dem_grains.part)", 3000, 300,
+      [](const DemGrains& m) -> const auto& { return m.G(); });
   fork_join_rows();
   std::printf("\nLoad average after: %s\n", load_average().c_str());
 }

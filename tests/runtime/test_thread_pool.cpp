@@ -3,10 +3,10 @@
 // loops, loops from several threads at once, exceptions, and a forked child
 // (whose copy of the parent's pool has no threads) all still run every
 // iteration. No timings here: see tests/bench/bench_loaded for those.
+#include <catch2/catch.hpp>
+
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <catch2/catch.hpp>
 
 #include <atomic>
 #include <cstddef>
