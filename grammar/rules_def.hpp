@@ -160,6 +160,7 @@ struct timestep_decl_id : locate {};
 struct output_decl_id : locate {};
 struct target_id : locate {};
 struct solve_statement_id : locate {};
+struct iterate_block_id : locate {};
 struct block_statement_id : locate {};
 struct step_number_id : locate {};
 struct var_decl_id : locate {};
@@ -224,6 +225,7 @@ x3::rule<output_decl_id, ast::OutputDecl> const output_decl = "an output declara
 x3::rule<target_id, ast::Target> const target = "a variable like v[i], or an observable";
 x3::rule<solve_statement_id, ast::SolveStatement> const solve_statement = "a solve statement";
 x3::rule<block_statement_id, ast::BlockStatement> const block_statement = "a statement";
+x3::rule<iterate_block_id, ast::IterateBlock> const iterate_block = "an iterate block";
 x3::rule<step_number_id, ast::Identifier> const step_number = "step";
 x3::rule<class step_number_text_id, ast::Identifier> const step_number_text = "step";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
@@ -238,7 +240,7 @@ x3::rule<schedule_option_id, ast::ScheduleOption> const schedule_option =
     "an option like search = kd_tree or skin = 0.3";
 x3::rule<fn_param_id, ast::FnParam> const fn_param = "a parameter like r: real";
 x3::rule<particles_decl_id, ast::ParticlesDecl> const particles_decl = "a particles declaration";
-x3::rule<stage_block_id, ast::StageBlock> const stage_block = "an init or step block";
+x3::rule<stage_block_id, ast::StageBlock> const stage_block = "an init, step or stage block";
 x3::rule<declaration_id, ast::Declaration> const declaration = "a declaration";
 x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
@@ -286,8 +288,8 @@ auto const set_step_name = [](auto& ctx) { _val(ctx).name = "step"; };
 x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
   s.add("model")("dim")("domain")("param")("const")("observable")("timestep")("output")("every")(
-      "fn")("particles")("schedule")("init")("step")("solve")("and")("or")("not")("true")("false")(
-      "in");
+      "fn")("particles")("schedule")("init")("step")("stage")("solve")("iterate")("until")(
+      "limit")("and")("or")("not")("true")("false")("in");
   return s;
 }();
 auto const word_char = alnum | char_('_');
@@ -384,10 +386,15 @@ auto const statement_name = &(identifier >> ':') >> identifier >> ':';
 auto const assignment_def = -statement_name >> target > assign_op > expression > -lit(';');
 auto const target_def = identifier >> -('[' > identifier > ']');
 
-// block_statement = solve_statement | assignment ;
+// block_statement = iterate_block | solve_statement | assignment ;
+// iterate_block   = "iterate" , "until" , expression , "limit" , expression ,
+//                   "{" , { block_statement } , "}" ;
 // solve_statement = [ identifier , ":" ] , "solve" , target , ":" , expression , "=" ,
 //                   expression , [ ";" ] ;
-auto const block_statement_def = solve_statement | assignment;
+auto const block_statement_def = iterate_block | solve_statement | assignment;
+auto const iterate_block_def = keyword("iterate") > keyword("until") > expression >
+                               keyword("limit") > expression > '{' > *block_statement >
+                               end_of_block;
 auto const solve_statement_def = -statement_name >> keyword("solve") > target > ':' > expression >
                                  '=' > expression > -lit(';');
 
@@ -442,9 +449,11 @@ auto const particles_decl_def = keyword("particles") > identifier > '(' > expres
                                 *var_decl > end_of_vars;
 auto const end_of_vars_def = lit('}');
 
-// stage_block = ( "init" | "step" ) , [ identifier ] , "{" , { assignment } , "}" ;
-auto const stage_block_def = (keyword_string("init") | keyword_string("step")) > -identifier >
-                             '{' > *block_statement > end_of_block;
+// stage_block = ( "init" | "step" ) , [ identifier ] , "{" , { block_statement } , "}"
+//             | "stage" , identifier , [ identifier ] , "{" , { block_statement } , "}" ;
+auto const stage_block_def =
+    (keyword_string("init") | keyword_string("step") | keyword_string("stage")) > *identifier >
+    '{' > *block_statement > end_of_block;
 auto const end_of_block_def = lit('}');
 
 // schedule_block = "schedule" , "{" , { schedule_item } , "}" ;
@@ -477,6 +486,7 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     postfix, primary, norm, call, argument, label_binding, assignment, model_decl,
                     dim_decl, domain_decl, tuple, param_decl, const_decl, observable_decl,
                     timestep_decl, timestep_decl_text, output_decl, target, solve_statement,
+                    iterate_block,
                     block_statement, step_number,
                     step_number_text, fn_decl, fn_param, schedule_block,
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,

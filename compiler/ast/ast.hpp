@@ -114,9 +114,18 @@ struct SolveStatement : Located {
   Chain rhs;
 };
 
-struct BlockStatement : x3::variant<Assignment, SolveStatement> {
+struct IterateBlock;
+struct BlockStatement : x3::variant<Assignment, SolveStatement, x3::forward_ast<IterateBlock>> {
   using base_type::base_type;
   using base_type::operator=;
+};
+
+// iterate until CONDITION limit K { ... }: the statements again and again
+// until the condition (on observables) holds after a pass, at most K passes.
+struct IterateBlock : Located {
+  Chain until;
+  Chain limit;
+  std::vector<BlockStatement> body;
 };
 
 struct ModelDecl : Located {
@@ -174,10 +183,11 @@ struct FnDecl : Located {
   std::vector<FnParam> params;
   Chain value;
 };
-// init [SET] { ... } or step [SET] { ... }
+// init [SET] { ... }, step [SET] { ... } or stage NAME [SET] { ... }: the
+// words after the keyword are the set, or the name and the set (sema reads them).
 struct StageBlock : Located {
   std::string kind;
-  boost::optional<Identifier> set;
+  std::vector<Identifier> words;
   std::vector<BlockStatement> body;
 };
 

@@ -101,18 +101,27 @@ struct Printer {
              (v.value ? " " + (*this)(*v.value) : "") + ") " + at(v);
     return out;
   }
-  std::string operator()(const StageBlock& n) const {
-    std::string out = "(" + n.kind + (n.set ? " " + n.set->name : "") + ") " + at(n);
-    for (const BlockStatement& s : n.body) {
+  std::string statements(const std::vector<BlockStatement>& body, const std::string& indent) const {
+    std::string out;
+    for (const BlockStatement& s : body) {
       if (auto a = boost::get<Assignment>(&s))
-        out += "\n  (" + (a->name ? a->name->name + ": " : std::string()) + a->op + " " +
-               (*this)(a->target) + " " + (*this)(a->value) + ") " + at(*a);
+        out += "\n" + indent + "(" + (a->name ? a->name->name + ": " : std::string()) + a->op +
+               " " + (*this)(a->target) + " " + (*this)(a->value) + ") " + at(*a);
       if (auto solve = boost::get<SolveStatement>(&s))
-        out += "\n  (" + (solve->name ? solve->name->name + ": " : std::string()) + "solve " +
-               (*this)(solve->unknown) + " " + (*this)(solve->lhs) + " " + (*this)(solve->rhs) +
-               ") " + at(*solve);
+        out += "\n" + indent + "(" + (solve->name ? solve->name->name + ": " : std::string()) +
+               "solve " + (*this)(solve->unknown) + " " + (*this)(solve->lhs) + " " +
+               (*this)(solve->rhs) + ") " + at(*solve);
+      if (auto loop = boost::get<x3::forward_ast<IterateBlock>>(&s))
+        out += "\n" + indent + "(iterate (until " + (*this)(loop->get().until) + ") (limit " +
+               (*this)(loop->get().limit) + ")) " + at(loop->get()) +
+               statements(loop->get().body, indent + "  ");
     }
     return out;
+  }
+  std::string operator()(const StageBlock& n) const {
+    std::string out = "(" + n.kind;
+    for (const Identifier& w : n.words) out += " " + w.name;
+    return out + ") " + at(n) + statements(n.body, "  ");
   }
   std::string operator()(const ScheduleBlock& n) const {
     std::string out = "(schedule) " + at(n);

@@ -26,24 +26,60 @@ void ModelEmitter::plan_kernels() {
     const Stage& stage = m_.stages[g];
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {
       const Statement& st = stage.statements[k];
-      const std::string stage_name = stage.kind == StageKind::Init ? "init" : "step";
+      const std::string stage_name = stage.kind == StageKind::Init   ? "init"
+                                     : stage.kind == StageKind::Step ? "step"
+                                                                     : stage.name;
       const std::string target = st.observable >= 0
                                      ? m_.observables[st.observable].name
                                      : (m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "") +
                                            m_.sets[st.set].vars[st.var].name;
-      kernels_.push_back({members_.fresh(stage_name + "_" + target), &st, &facts_.aliasing[g][k],
+      kernels_.push_back({members_.fresh(stage_name + "_" + target),
+                          &st,
+                          &facts_.aliasing[g][k],
                           {static_cast<int>(g), static_cast<int>(k)}});
-      kernel_stage_.push_back(stage.kind);
     }
   }
 }
 
-std::vector<std::string> ModelEmitter::kernel_names(StageKind kind) {
+// The calls of every stage of one kind (of one name), in order; an iterate
+// block's statements in a loop that ends when its condition holds, or stops
+// the run with a message when its limit is reached first.
+void ModelEmitter::stage_calls(StageKind kind, const std::string& name) {
   plan_kernels();
-  std::vector<std::string> out;
-  for (std::size_t k = 0; k < kernels_.size(); ++k)
-    if (kernel_stage_[k] == kind) out.push_back(kernels_[k].name);
-  return out;
+  for (std::size_t g = 0; g < m_.stages.size(); ++g) {
+    const Stage& stage = m_.stages[g];
+    if (stage.kind != kind || stage.name != name) continue;
+    auto call = [&](int k) {
+      for (const Kernel& kernel : kernels_)
+        if (kernel.position == std::make_pair(static_cast<int>(g), k)) linef("{}();", kernel.name);
+    };
+    int next = 0;
+    for (const Iterate& loop : stage.loops) {
+      for (; next < loop.first; ++next) call(next);
+      const ExpressionNames names = base_names();
+      const std::string passes = members_.fresh("passes");
+      linef("// {}: iterate until {}, at most {} passes", source_line(loop.loc),
+            source_text(loop.until->loc), source_text(loop.limit->loc));
+      linef("for (std::int64_t {0} = 1;; ++{0}) {{", passes);
+      for (; next < loop.last; ++next) call(next);
+      linef("if ({}) break;", expression(loop.until, names));
+      linef("if ({} >= {}) {{", passes, expression(loop.limit, names));
+      StatementUses reads;
+      reads.visit(loop.until);
+      std::string values;
+      for (int o : reads.observables)
+        if (m_.observables[o].type != Type::Vec)
+          values += fmt::format(" + \"; {} = \" + partc::shown({})", m_.observables[o].name,
+                                names.observables[o]);
+      linef(
+          "throw partc::NumericalError(\"{}: iterate did not converge in \" + "
+          "std::to_string({}) + \" passes (until {})\"{});",
+          source_line(loop.loc), passes, source_text(loop.until->loc), values);
+      line("}");
+      line("}");
+    }
+    for (; next < static_cast<int>(stage.statements.size()); ++next) call(next);
+  }
 }
 
 void ModelEmitter::kernels() {

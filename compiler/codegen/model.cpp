@@ -50,12 +50,32 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
     set_type_.push_back(members_.fresh(s.name + "Set"));
   }
   for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
-  for (const char* api :
-       {"params", "set_seed", "step_count", "param_info", "set_param", "init", "load", "step",
-        "for_each_set", "search_report", "check_finite", "compute_constants", "observables", "time",
-        "log_columns", "log_every", "log_row", "solve_report", "set_matrix_market",
-        "matrix_market_"})
+  for (const char* api : {"params",
+                          "set_seed",
+                          "step_count",
+                          "param_info",
+                          "set_param",
+                          "init",
+                          "load",
+                          "step",
+                          "for_each_set",
+                          "search_report",
+                          "check_finite",
+                          "compute_constants",
+                          "observables",
+                          "time",
+                          "log_columns",
+                          "log_every",
+                          "log_row",
+                          "solve_report",
+                          "set_matrix_market",
+                          "matrix_market_",
+                          "stage_names",
+                          "run_stage"})
     members_.reserve(api);
+  for (const Stage& stage : m_.stages)
+    if (stage.kind == StageKind::Named)
+      stage_methods_[stage.name] = members_.fresh(cpp_name(stage.name));
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
   plan_searches();
@@ -169,7 +189,8 @@ void ModelEmitter::header() {
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
   if (!solve_results_.empty())
-    for (const char* h : {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
+    for (const char* h :
+         {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
       headers.push_back(h);
   std::sort(headers.begin(), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
@@ -237,6 +258,7 @@ void ModelEmitter::public_api() {
   init();
   load();
   step();
+  named_stages();
   for_each_set();
   search_report();
   solve_report();
@@ -291,7 +313,7 @@ void ModelEmitter::init() {
   line("compute_constants();");
   start_clock();
   for (std::size_t s = 0; s < m_.sets.size(); ++s) linef("create_{}();", m_.sets[s].name);
-  for (const std::string& k : kernel_names(StageKind::Init)) linef("{}();", k);
+  stage_calls(StageKind::Init);
   line("}");
   line("");
 }
@@ -346,7 +368,7 @@ void ModelEmitter::step() {
   line(m_.timestep ? "// One time step: every step block, in order; then t advances."
                    : "// One time step: every step block, in order.");
   line("void step() {");
-  for (const std::string& k : kernel_names(StageKind::Step)) linef("{}();", k);
+  stage_calls(StageKind::Step);
   if (m_.timestep)
     linef("t_ += {};  // {}", expression(m_.timestep, initialiser_names(0)),
           source_line(m_.timestep->loc));
@@ -379,6 +401,33 @@ void ModelEmitter::search_report() {
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
   line("return report;");
   line("}");
+}
+
+// A method per named stage, and the stages by name (for the driver's --stage).
+void ModelEmitter::named_stages() {
+  if (stage_methods_.empty()) return;
+  for (const Stage& stage : m_.stages) {
+    if (stage.kind != StageKind::Named) continue;
+    linef("// Stage {} ({}): its statements, in order.", stage.name, source_line(stage.loc));
+    linef("void {}() {{", stage_methods_.at(stage.name));
+    stage_calls(StageKind::Named, stage.name);
+    line("}");
+  }
+  std::vector<std::string> quoted, names;
+  for (const auto& [name, method] : stage_methods_) {
+    quoted.push_back("\"" + name + "\"");
+    names.push_back(name);
+  }
+  linef("static std::vector<std::string> stage_names() {{ return {{{}}}; }}",
+        fmt::join(quoted, ", "));
+  line("// Runs a named stage, as the driver's --stage does.");
+  line("void run_stage(const std::string& name) {");
+  for (const auto& [name, method] : stage_methods_)
+    linef("if (name == \"{}\") return {}();", name, method);
+  linef("throw partc::UsageError(\"no stage '\" + name + \"' in model {} (stages: {})\");", m_.name,
+        fmt::join(names, ", "));
+  line("}");
+  line("");
 }
 
 // Each solve's last result, for the driver's summary; where to write the

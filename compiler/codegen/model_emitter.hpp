@@ -154,7 +154,8 @@ class ModelEmitter {
     std::pair<int, int> position;  // (stage, statement)
   };
   void plan_kernels();
-  std::vector<std::string> kernel_names(StageKind kind);
+  void stage_calls(StageKind kind, const std::string& name = "");
+  void named_stages();
   void kernels();
   void kernel(const Kernel& k);
   void kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
@@ -216,7 +217,7 @@ class ModelEmitter {
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
-  std::vector<StageKind> kernel_stage_;
+  std::map<std::string, std::string> stage_methods_;  // named stage -> its method
   std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element
   std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
 };

@@ -37,7 +37,10 @@ std::string explain(const Compilation& c, const SourceFile& file) {
       const ir::Statement& st = stage.statements[k];
       const LineColumn at = file.line_column(st.loc.begin);
       out += fmt::format("{}:{}: {} {}\n", file.path(), at.line,
-                         stage.kind == ir::StageKind::Init ? "init" : "step", file.slice(st.loc));
+                         stage.kind == ir::StageKind::Init   ? "init"
+                         : stage.kind == ir::StageKind::Step ? "step"
+                                                             : "stage " + stage.name,
+                         file.slice(st.loc));
       out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
       if (st.solve_operator)
         out += "  solve: " +

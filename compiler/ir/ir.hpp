@@ -321,9 +321,22 @@ struct Statement {
   int line = 0;  // 1-based line in the .part file
 };
 
-enum class StageKind { Init, Step };
+// Passes [first, last) of a stage's statements run again and again until
+// `until` (a bool of observables, params, consts) holds after a pass, at most
+// `limit` passes; then the run stops with a message.
+struct Iterate {
+  int first, last;
+  Expr until;
+  Expr limit;  // an int
+  Location loc;
+};
+
+// Named stages run when the driver or the C++ API asks for them by name.
+enum class StageKind { Init, Step, Named };
 struct Stage {
   StageKind kind;
+  std::string name;  // of a named stage
+  std::vector<Iterate> loops;  // in order, not nested
   int set;  // -1: a block of a model with several sets that assigns only observables
   std::vector<Statement> statements;
   Location loc;

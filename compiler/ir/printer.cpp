@@ -116,7 +116,10 @@ std::string to_string(const Model& model) {
     out += "\n";
   }
   for (const Stage& stage : model.stages) {
-    out += fmt::format("{} {}\n", stage.kind == StageKind::Init ? "init" : "step",
+    out += fmt::format("{} {}\n",
+                       stage.kind == StageKind::Init   ? "init"
+                       : stage.kind == StageKind::Step ? "step"
+                                                       : "stage " + stage.name,
                        stage.set >= 0 ? model.sets[stage.set].name : "(observables)");
     for (const Statement& st : stage.statements) {
       const std::string target = st.observable >= 0

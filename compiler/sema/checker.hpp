@@ -119,7 +119,10 @@ class Sema {
 
   // ---- statements.cpp: stages, statements and the schedule ----------------
   void check_stage(const ast::StageBlock& block);
-  int resolve_stage_set(const ast::StageBlock& block);
+  const ast::Identifier* stage_words(const ast::StageBlock& block, ir::Stage& stage);
+  void check_block(const std::vector<ast::BlockStatement>& body, ir::Stage& stage, bool in_loop);
+  void check_iterate(const ast::IterateBlock& loop, ir::Stage& stage);
+  int resolve_stage_set(const ast::StageBlock& block, const ast::Identifier* set);
   int set_named(const ast::Identifier& name);
   std::vector<std::string> set_names() const;
   ir::Statement particle_statement(const ast::Target& target, Location loc, int set_index);

@@ -1,5 +1,6 @@
 // Sema: stage blocks, their statements, and the schedule.
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -10,18 +11,58 @@ namespace partc::sema {
 
 void Sema::check_stage(const ast::StageBlock& block) {
   ir::Stage stage;
-  stage.kind = block.kind == "init" ? ir::StageKind::Init : ir::StageKind::Step;
+  stage.kind = block.kind == "init"   ? ir::StageKind::Init
+               : block.kind == "step" ? ir::StageKind::Step
+                                      : ir::StageKind::Named;
   stage.loc = block.loc;
   stage.set = -1;
   try {
-    stage.set = resolve_stage_set(block);
+    const ast::Identifier* set = stage_words(block, stage);
+    stage.set = resolve_stage_set(block, set);
   } catch (const SemaError& e) {
     if (!e.follow_on) diagnostics_.push_back(e.diagnostic);
     return;
   }
+  check_block(block.body, stage, false);
+  model_.stages.push_back(std::move(stage));
+}
+
+// The words after init/step (the set) or stage (the name, then the set);
+// returns the set's, if given.
+const ast::Identifier* Sema::stage_words(const ast::StageBlock& block, ir::Stage& stage) {
+  const std::size_t named = stage.kind == ir::StageKind::Named;
+  if (named && block.words.empty())
+    fail(block.loc, "a stage needs a name, as in 'stage settle { ... }'");
+  if (block.words.size() > 1 + named)
+    fail(block.words.back().loc,
+         "one word too many: " + block.kind + (named ? " NAME [SET] { ... }" : " [SET] { ... }"));
+  if (named) {
+    const ast::Identifier& name = block.words.front();
+    if (is_builtin_name(name.name) || names_.count(name.name) || name.name == "init")
+      fail(name.loc, "stage " + quoted(name.name) +
+                         " has the name of a param, const, set, "
+                         "function, observable or builtin");
+    for (const ir::Stage& other : model_.stages)
+      if (other.kind == ir::StageKind::Named && other.name == name.name)
+        fail(name.loc, "a second stage named " + quoted(name.name),
+             "the first is on line " + std::to_string(file_.line_column(other.loc.begin).line));
+    stage.name = name.name;
+  }
+  return block.words.size() > named ? &block.words.back() : nullptr;
+}
+
+// The statements of a block, in order; those of an iterate block (not
+// nested) become one of the stage's loops.
+void Sema::check_block(const std::vector<ast::BlockStatement>& body, ir::Stage& stage,
+                       bool in_loop) {
   const int stage_index = static_cast<int>(model_.stages.size());
-  for (const ast::BlockStatement& s : block.body)
+  for (const ast::BlockStatement& s : body)
     guarded([&] {
+      if (auto loop = boost::get<ast::x3::forward_ast<ast::IterateBlock>>(&s)) {
+        if (in_loop) fail(loop->get().loc, "iterate blocks do not nest");
+        check_iterate(loop->get(), stage);
+        return;
+      }
       const auto* a = boost::get<ast::Assignment>(&s);
       const auto* solve = boost::get<ast::SolveStatement>(&s);
       stage.statements.push_back(a ? check_statement(*a, stage.set)
@@ -37,22 +78,50 @@ void Sema::check_stage(const ast::StageBlock& block) {
             "the first is on line " + std::to_string(file_.line_column(it->second.loc.begin).line));
       stage.statements.back().name = name->name;
     });
-  model_.stages.push_back(std::move(stage));
 }
 
-int Sema::resolve_stage_set(const ast::StageBlock& block) {
-  if (block.set) return set_named(*block.set);
+void Sema::check_iterate(const ast::IterateBlock& loop, ir::Stage& stage) {
+  ir::Iterate it;
+  it.loc = loop.loc;
+  it.first = static_cast<int>(stage.statements.size());
+  Scope scope;
+  scope.context = "the condition of an iterate block";
+  scope.observables = true;
+  it.until = check(loop.until, scope);
+  if (it.until->type != Type::Bool)
+    fail(loop.until.loc,
+         "the condition of an iterate block must be a bool, not " + a_type(it.until->type),
+         "it decides on observables, as in: iterate until residual < 1e-8 limit 1000 { ... }");
+  scope.context = "the limit of an iterate block";
+  it.limit =
+      convert(check(loop.limit, scope), Type::Int, loop.limit.loc, "the limit of an iterate block");
+  if (auto value = evaluate_constant(it.limit, model_); value && !(*value >= 1))
+    fail(loop.limit.loc, "an iterate block's limit must be at least 1 pass");
+  if (loop.body.empty()) fail(loop.loc, "an iterate block needs statements to repeat");
+  check_block(loop.body, stage, true);
+  it.last = static_cast<int>(stage.statements.size());
+  stage.loops.push_back(std::move(it));
+}
+
+int Sema::resolve_stage_set(const ast::StageBlock& block, const ast::Identifier* set) {
+  if (set) return set_named(*set);
   if (model_.sets.empty()) throw SemaError{{}, true};  // "a model needs a set" says it
   // A block that assigns only observables needs no set.
-  const bool observables_only =
-      std::all_of(block.body.begin(), block.body.end(), [](const ast::BlockStatement& s) {
-        const auto* a = boost::get<ast::Assignment>(&s);
-        return a && !a->target.label;
-      });
-  if (model_.sets.size() != 1 && observables_only) return -1;
+  std::function<bool(const std::vector<ast::BlockStatement>&)> observables_only =
+      [&](const std::vector<ast::BlockStatement>& body) {
+        return std::all_of(body.begin(), body.end(), [&](const ast::BlockStatement& s) {
+          if (auto loop = boost::get<ast::x3::forward_ast<ast::IterateBlock>>(&s))
+            return observables_only(loop->get().body);
+          const auto* a = boost::get<ast::Assignment>(&s);
+          return a && !a->target.label;
+        });
+      };
+  if (model_.sets.size() != 1 && observables_only(block.body)) return -1;
+  const std::string example =
+      block.kind == "stage" ? "stage " + block.words.front().name : block.kind;
   if (model_.sets.size() != 1)
     fail(block.loc, "this model has several particle sets: name the one this " + block.kind +
-                        " block updates, as in '" + block.kind + " " + model_.sets[0].name +
+                        " block updates, as in '" + example + " " + model_.sets[0].name +
                         " { ... }'");
   return 0;
 }

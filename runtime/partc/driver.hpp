@@ -4,8 +4,8 @@
 //
 // Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
-// --log FILE.csv, --log-every M, --quiet; "--option=value" works too. Exit status: 0 success, 1 bad input
-// file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
+// --log FILE.csv, --log-every M, --quiet; "--option=value" works too. Exit status: 0 success, 1 bad
+// input file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
 // Surprises:
 // - Every argument is checked before any work, including the parameter
@@ -64,9 +64,10 @@ struct DriverOptions {
   std::string vtk_prefix;                                   // "" = no VTK output
   std::int64_t every = 1;
   std::int64_t check_every = 1;
-  std::string log;                         // "" = no CSV time series
-  std::string matrix_market;               // "" = no Matrix Market files of solves
-  std::optional<std::int64_t> log_every;  // overrides the model's interval
+  std::string log;            // "" = no CSV time series
+  std::string matrix_market;  // "" = no Matrix Market files of solves
+  std::vector<std::pair<std::string, std::int64_t>> stages;  // (named stage, runs), in order
+  std::optional<std::int64_t> log_every;                     // overrides the model's interval
   bool quiet = false;
 };
 
@@ -76,6 +77,12 @@ template <class Model, class = void>
 struct logs_observables : std::false_type {};
 template <class Model>
 struct logs_observables<Model, std::void_t<decltype(Model::log_columns())>> : std::true_type {};
+
+// Models with named stages run them by name.
+template <class Model, class = void>
+struct has_stages : std::false_type {};
+template <class Model>
+struct has_stages<Model, std::void_t<decltype(Model::stage_names())>> : std::true_type {};
 
 // Models with solve statements report them, and can write their systems.
 template <class Model, class = void>
@@ -94,7 +101,7 @@ inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
          " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--log FILE.csv]"
-         " [--log-every M] [--matrix-market PREFIX] [--quiet] [--help]";
+         " [--log-every M] [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -200,6 +207,21 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
       } else {
         options.log_every = parse_count<std::int64_t>(option, value());
       }
+    } else if (option == "--stage") {
+      const std::string spec = value();
+      const auto colon = spec.find(':');
+      const std::string name = spec.substr(0, colon);
+      std::vector<std::string> known;
+      if constexpr (has_stages<Model>::value) known = Model::stage_names();
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        throw UsageError("--stage " + spec + ": model " + std::string(Model::model_name) +
+                         (known.empty()
+                              ? " has no named stage"
+                              : " has no stage '" + name + "' (stages: " + join(known) + ")"));
+      options.stages.emplace_back(name,
+                                  colon == std::string::npos
+                                      ? 1
+                                      : parse_count<std::int64_t>(option, spec.substr(colon + 1)));
     } else if (option == "--matrix-market") {
       if constexpr (!has_solves<Model>::value)
         throw UsageError("option --matrix-market: model " + std::string(Model::model_name) +
@@ -234,6 +256,10 @@ void print_help(std::ostream& out, const Model& model) {
        << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
        << "  --every M            VTK every M steps (default 1; step 0 is always written)\n"
        << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n";
+  if constexpr (has_stages<Model>::value)
+    text << "  --stage NAME[:K]     run a named stage K times (default 1) after init, before\n"
+         << "                       the steps; repeatable, in order (stages: "
+         << join(Model::stage_names()) << ")\n";
   if constexpr (has_solves<Model>::value)
     text << "  --matrix-market P    write each solve's matrix and right side to P_NAME.mtx,\n"
          << "                       P_NAME_rhs.mtx (Matrix Market)\n";
@@ -242,8 +268,7 @@ void print_help(std::ostream& out, const Model& model) {
          << join(Model::log_columns()) << ")\n"
          << "  --log-every M        a progress row every M steps (default " << model.log_every()
          << "; 0: none)\n";
-  text
-       << "  --quiet              no summary at the end\n"
+  text << "  --quiet              no summary at the end\n"
        << "  --help               this text\n\n"
        << "Parameters:\n";
   const std::vector<ParamInfo> params = Model::param_info();
@@ -319,6 +344,10 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     return every > 0 && step % every == 0;
   };
 
+  if constexpr (has_stages<Model>::value)
+    for (const auto& [name, runs] : options.stages)
+      for (std::int64_t k = 0; k < runs; ++k) model.run_stage(name);
+
   std::optional<ThermoLog> log;
   if constexpr (logs_observables<Model>::value)
     log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
@@ -335,9 +364,8 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     double time = static_cast<double>(step);
     if constexpr (has_time<Model>::value) time = model.time();
     if (!series.empty() && due(step, options.every))
-      model.for_each_set([&](const char* name, const auto& set) {
-        series.at(name).write(set, step, time);
-      });
+      model.for_each_set(
+          [&](const char* name, const auto& set) { series.at(name).write(set, step, time); });
   }
   if (options.check_every > 0 && !checked) model.check_finite();
   if (log) log->close();

@@ -3,6 +3,7 @@
 // - ParamInfo / parse_param: parameters as text, for --set and --help.
 // - SearchReport: what a neighbour search is and how often it was built.
 // - max_over: the largest value over a set's particles.
+// - shown: a number for a message, in 6 significant digits.
 // - load_set: a particle set from a CSV table, with the model's declared
 //   initial values for the variables the table lacks, and positions wrapped
 //   into the periodic domain.
@@ -14,6 +15,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -54,6 +57,13 @@ T parse_param(const std::string& name, const std::string& text) {
                        "'");
     return value;
   }
+}
+
+template <class T>
+std::string shown(T value) {
+  std::ostringstream text;
+  text << std::setprecision(6) << value;
+  return text.str();
 }
 
 // The largest value(n) over k < n, or 0 with no particles: sizes a search

@@ -249,11 +249,13 @@ TEST_CASE("a bad radius or periodic length is rejected", "[search]") {
     CHECK_THROWS_AS(partc::BruteForce<2>().build(box, radius, points), std::invalid_argument);
     CHECK_THROWS_AS(partc::LinkedCellList<2>().build(box, radius, points), std::invalid_argument);
     CHECK_THROWS_AS(partc::OrderedCellList<2>().build(box, radius, points), std::invalid_argument);
-    partc::ParticleSet<2> set;
-    set.push_back(points[0]);
-    CHECK_THROWS_WITH(partc::NeighbourSearch<2>().build(box, radius, set),
-                      Catch::Contains("radius must be positive"));
   }
+  // The facade takes 0 and less (coincident particles only, tested below), not NaN.
+  partc::ParticleSet<2> set;
+  set.push_back(points[0]);
+  CHECK_THROWS_WITH(
+      partc::NeighbourSearch<2>().build(box, std::numeric_limits<double>::quiet_NaN(), set),
+      Catch::Contains("radius must be positive"));
   CHECK_THROWS_AS(partc::BruteForce<2>().build(flat, 0.1, points), std::invalid_argument);
   CHECK_THROWS_AS(partc::OrderedCellList<2>().build(flat, 0.1, points), std::invalid_argument);
 }
