@@ -14,9 +14,6 @@
 // partc can assemble.
 #include "analysis/linear_operator.hpp"
 
-#include <optional>
-
-#include "ir/mutator.hpp"
 #include "ir/visitor.hpp"
 #include "support/diagnostics.hpp"
 
@@ -54,8 +51,7 @@ bool is_zero(const Expr& e) {
 
 class Linearise {
  public:
-  Linearise(const ir::Model& model, const ir::Statement& st, const std::string& unknown)
-      : model_(model), st_(st), unknown_(unknown) {}
+  Linearise(const ir::Statement& st, const std::string& unknown) : st_(st), unknown_(unknown) {}
 
   // A factor of a term is computed per row, before its sums: no sum in it.
   Expr factor(const Expr& e) const {
@@ -201,7 +197,6 @@ class Linearise {
     return std::make_shared<ir::Unary>(ir::Type::Real, ir::UnaryOp::Neg, scale, at);
   }
 
-  const ir::Model& model_;
   const ir::Statement& st_;
   const std::string& unknown_;
 };
@@ -216,7 +211,7 @@ LinearOperatorReport find_linear_operators(const ir::Model& model,
       const ir::Statement& st = model.stages[g].statements[k];
       if (!st.solve_operator) continue;
       const std::string& unknown = model.sets[st.set].vars[st.var].name;
-      Linearise linearise(model, st, unknown);
+      Linearise linearise(st, unknown);
       LinearOperatorFact fact;
       linearise.terms(st.solve_operator, nullptr, {}, fact.terms);
       if (linearise.reads_unknown(st.value))

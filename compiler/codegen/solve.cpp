@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "codegen/model_emitter.hpp"
-#include "support/diagnostics.hpp"
 
 namespace partc::codegen {
 
