@@ -37,3 +37,22 @@ TEST_CASE("a head-on collision's restitution coefficient is the spring-dashpot's
     CHECK(v[0][0] * 1 + v[1][0] * 2 == Approx(1 * 1.0 - 2 * 1.0).margin(1e-9));
   }
 }
+
+TEST_CASE("a settled pile: the floor carries its weight", "[e2e][dem]") {
+  DemCollision model;
+  model.params().scene = 1;
+  model.params().N = 48;
+  model.params().g = 9.81;
+  model.params().gamma = 2;
+  model.params().zeta = 0.3;
+  model.params().dt = 2e-5;
+  model.set_seed(8);
+  model.init();
+  for (long k = 0; k < 125000; ++k) model.step();  // t = 2.5: dropped, bounced, settled
+  const double weight = 48 * 9.81;
+  CHECK(model.observables().weight == Approx(weight).epsilon(1e-12));
+  INFO("floor force " << model.observables().floor_force << ", kinetic energy "
+                      << model.observables().e_kin);
+  CHECK(model.observables().e_kin < 1e-3 * weight * 0.1);  // at rest, against m g r
+  CHECK(model.observables().floor_force == Approx(weight).epsilon(0.01));
+}
