@@ -37,7 +37,7 @@ TEST_CASE("an iterate block that reaches its limit stops with a message", "[e2e]
   model.params().max_passes = 3;
   model.init();
   CHECK_THROWS_WITH(model.run_stage("settle"),
-                    Catch::Contains("fixed_point.part:27: iterate did not converge in 3 passes "
+                    Catch::Contains("fixed_point.part:28: iterate did not converge in 3 passes "
                                     "(until residual < tol); residual = "));
   CHECK(model.observables().passes == 3);
 }
