@@ -129,6 +129,7 @@ class Sema {
   ir::Statement check_statement(const ast::Assignment& a, int set_index);
   ir::Statement check_observable_statement(const ast::Assignment& a, int set_index);
   ir::Statement check_solve(const ast::SolveStatement& s, int set_index);
+  Scope statement_scope(ir::Statement& st, std::string context);
   ir::Expr check_assigned_value(const ast::Assignment& a, ir::AssignOp op, Type type,
                                 const std::string& what, Scope& scope);
   void not_assignable(const ast::Identifier& name, const ir::ParticleSet& set);

@@ -217,12 +217,7 @@ ir::Statement Sema::check_statement(const ast::Assignment& a, int set_index) {
   if (st.var == ir::kId) fail(a.target.var.loc, "'id' is read-only: particle ids never change");
   st.op = assign_op(a.op);
 
-  Scope scope;
-  scope.where = Scope::Where::Statement;
-  scope.context = "a statement";
-  scope.labels = &st.labels;
-  scope.bound = {0};
-  scope.observables = true;
+  Scope scope = statement_scope(st, "a statement");
   st.value = check_assigned_value(a, st.op, var.type, "variable " + var.name, scope);
   return st;
 }
@@ -260,12 +255,7 @@ ir::Statement Sema::check_observable_statement(const ast::Assignment& a, int set
   st.labels.push_back({"", set_index});
   statement_target_ = a.target.loc;
   st.op = assign_op(a.op);
-  Scope scope;
-  scope.where = Scope::Where::Statement;
-  scope.context = "an observable's statement";
-  scope.labels = &st.labels;
-  scope.home = false;
-  scope.observables = true;
+  Scope scope = statement_scope(st, "an observable's statement");
   st.value = check_assigned_value(a, st.op, observable.type, "observable " + name, scope);
   return st;
 }
@@ -284,18 +274,26 @@ ir::Statement Sema::check_solve(const ast::SolveStatement& s, int set_index) {
     fail(s.unknown.var.loc, "a solve is for a real variable, not " + a_type(set.vars[st.var].type),
          "solve each component of a vec as a real variable of its own");
   st.op = ir::AssignOp::Set;
-  Scope scope;
-  scope.where = Scope::Where::Statement;
-  scope.context = "a solve";
-  scope.labels = &st.labels;
-  scope.bound = {0};
-  scope.observables = true;
+  Scope scope = statement_scope(st, "a solve");
   st.solve_operator = check(s.lhs, scope);
   if (!ir::is_numeric_scalar(st.solve_operator->type))
     fail(s.lhs.loc,
          "the left side of a solve must be a number, not " + a_type(st.solve_operator->type));
   st.value = convert(check(s.rhs, scope), Type::Real, s.rhs.loc, "the right side of a solve");
   return st;
+}
+
+// Where a statement's expressions are checked: its labels; its own particle
+// (label 0) bound, unless its target is an observable, which has none.
+Scope Sema::statement_scope(ir::Statement& st, std::string context) {
+  Scope scope;
+  scope.where = Scope::Where::Statement;
+  scope.context = std::move(context);
+  scope.labels = &st.labels;
+  scope.home = st.observable < 0;
+  if (scope.home) scope.bound = {0};
+  scope.observables = true;
+  return scope;
 }
 
 // The value of `target op= value`, checked against the target's type.
