@@ -371,8 +371,9 @@ auto const call_def = identifier >> '(' > -(argument % ',') > ')';
 // argument = label_binding | expression ;
 auto const argument_def = label_binding | expression;
 
-// label_binding = identifier , "in" , identifier ;
-auto const label_binding_def = identifier >> keyword("in") > identifier;
+// label_binding = identifier , "in" , ( identifier | "(" , identifier , { "," , identifier } , ")" ) ;
+auto const label_binding_def =
+    identifier >> keyword("in") > (('(' > (identifier % ',') > ')') | x3::repeat(1)[identifier]);
 
 // assignment = [ identifier , ":" ] , target , assign_op , expression , [ ";" ] ;
 // target     = identifier , [ "[" , identifier , "]" ] ;

@@ -77,10 +77,11 @@ struct Postfix : Located {
   Operand base;
   std::vector<Identifier> components;
 };
-// `j in Q` as the first argument of an accumulation
+// `j in Q`, or `j in (Q, R)` over several sets, as the first argument of an
+// accumulation
 struct LabelBinding : Located {
   Identifier label;
-  Identifier set;
+  std::vector<Identifier> sets;
 };
 struct Argument : x3::variant<LabelBinding, Chain> {
   using base_type::base_type;

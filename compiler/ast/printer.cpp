@@ -38,7 +38,9 @@ struct Printer {
     return out;
   }
   std::string operator()(const LabelBinding& n) const {
-    return "(in " + n.label.name + " " + n.set.name + ")";
+    std::string out = "(in " + n.label.name;
+    for (const Identifier& s : n.sets) out += " " + s.name;
+    return out + ")";
   }
   std::string operator()(const Call& n) const {
     std::string out = "(call " + n.callee.name;

@@ -150,7 +150,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   linef("// {}", source_line(st.loc));
   linef("//   {}", source_text(st.loc));
   for (const Accumulate* acc : uses.accumulations) {
-    comment(fmt::format("{}({}): {}", reduction_name(acc->reduction), st.labels[acc->label].name,
+    comment(fmt::format("{}: {}", accumulation_heading(m_, st, *acc),
                         facts_.neighbourhoods.at(acc->id).reason));
     if (newton_pairs(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
       comment((st.schedule.skin ? "  each pair once, from half Verlet lists: "

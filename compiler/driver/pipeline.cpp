@@ -47,8 +47,7 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                c.facts.linear_operators.at({static_cast<int>(g), static_cast<int>(k)}).reason + "\n";
       for (const ir::Accumulate* acc : ir::accumulations_in(st)) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
-        out += fmt::format("  {}({}): {}\n", ir::reduction_name(acc->reduction),
-                           st.labels[acc->label].name, fact.reason);
+        out += fmt::format("  {}: {}\n", ir::accumulation_heading(c.model, st, *acc), fact.reason);
         if (c.facts.uniform_sums.at(acc->id).once)
           out += "    " + c.facts.uniform_sums.at(acc->id).reason + "\n";
         if (fact.kind != SearchFact::Kind::Neighbours) continue;

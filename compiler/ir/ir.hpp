@@ -347,6 +347,11 @@ struct Domain {
   std::vector<bool> periodic;
 };
 
+struct Model;
+// How --explain and kernel comments name an accumulation: "sum(j)", or
+// "sum(j in W)" when j runs over another set than the statement's.
+std::string accumulation_heading(const Model& m, const Statement& st, const Accumulate& acc);
+
 struct Model {
   std::string name;
   int dim = 0;

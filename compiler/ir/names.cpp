@@ -100,4 +100,11 @@ int ParticleSet::find_var(const std::string& var_name) const {
   return -1;
 }
 
+std::string accumulation_heading(const Model& m, const Statement& st, const Accumulate& acc) {
+  const Label& label = st.labels[acc.label];
+  std::string heading = std::string(reduction_name(acc.reduction)) + "(" + label.name;
+  if (label.set != st.set) heading += " in " + m.sets[label.set].name;
+  return heading + ")";
+}
+
 }  // namespace partc::ir

@@ -2,6 +2,9 @@
 #include <algorithm>
 #include <map>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "ir/constant.hpp"
 #include "sema/checker.hpp"
 
@@ -215,12 +218,19 @@ Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope
     fail(n.loc, "nested accumulations are not supported",
          "compute the inner one into a variable in an earlier statement");
 
-  // The label: `j` (over the statement's set) or `j in Q`.
-  ir::Label label;
+  // The label: `j` (over the statement's set), `j in Q`, or `j in (Q, R)`.
+  std::string label_name;
   Location label_loc;
+  std::vector<int> sets;
   if (auto b = boost::get<ast::LabelBinding>(&n.args.front())) {
-    label = {b->label.name, set_named(b->set)};
+    label_name = b->label.name;
     label_loc = b->label.loc;
+    for (const ast::Identifier& set : b->sets) {
+      const int s = set_named(set);
+      if (std::find(sets.begin(), sets.end(), s) != sets.end())
+        fail(set.loc, "set " + quoted(set.name) + " is listed twice in this " + name);
+      sets.push_back(s);
+    }
   } else {
     const ast::Chain& c = boost::get<ast::Chain>(n.args.front());
     const ast::Operand* sole = ast::sole_operand(c);
@@ -228,34 +238,61 @@ Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope
     if (!id)
       fail(c.loc,
            "the first argument of " + name + " must be a new label, as in " + name + "(j, ...)");
-    label = {id->name, scope.labels->front().set};
+    label_name = id->name;
     label_loc = id->loc;
-    if (label.set < 0)
+    sets.push_back(scope.labels->front().set);
+    if (sets.front() < 0)
       fail(id->loc,
            "this block updates no particle set: say which set " + quoted(id->name) + " runs over",
            "as in " + name + "(" + id->name + " in " + model_.sets[0].name + ", ...)");
   }
-  if (label.name == scope.labels->front().name)
+  if (label_name == scope.labels->front().name)
     fail(statement_target_,
-         "cannot write " + source_text(statement_target_) + ": " + quoted(label.name) +
+         "cannot write " + source_text(statement_target_) + ": " + quoted(label_name) +
              " is the label of this " + name + ", which runs over other particles",
          "a statement writes only its own particle, as in v[i] += " + name + "(j, ...)");
   for (int b : scope.bound)
-    if ((*scope.labels)[b].name == label.name)
-      fail(label_loc, "label " + quoted(label.name) + " is already bound");
+    if ((*scope.labels)[b].name == label_name)
+      fail(label_loc, "label " + quoted(label_name) + " is already bound");
   for (const ir::ParticleSet& s : model_.sets)
-    if (s.find_var(label.name) >= 0)
-      fail(label_loc, "label " + quoted(label.name) + " has the name of a particle variable");
-  if (names_.count(label.name) || label.name == "dx")
-    fail(label_loc, "label " + quoted(label.name) + " has the name of a param, const or set");
+    if (s.find_var(label_name) >= 0)
+      fail(label_loc, "label " + quoted(label_name) + " has the name of a particle variable");
+  if (names_.count(label_name) || label_name == "dx")
+    fail(label_loc, "label " + quoted(label_name) + " has the name of a param, const or set");
 
-  scope.labels->push_back(label);
-  const int label_index = static_cast<int>(scope.labels->size() - 1);
-  Scope inner = scope;
-  inner.bound.push_back(label_index);
-  inner.in_accumulation = true;
+  // Over several sets, the accumulation is one per set, combined: each set has
+  // its own search and its own label, so the analyses see ordinary sums.
+  Expr combined;
+  for (int set : sets) {
+    scope.labels->push_back({label_name, set});
+    const int label_index = static_cast<int>(scope.labels->size() - 1);
+    Scope inner = scope;
+    inner.bound.push_back(label_index);
+    inner.in_accumulation = true;
+    if (sets.size() > 1) {
+      std::vector<std::string> names;
+      for (int t : sets) names.push_back(model_.sets[t].name);
+      inner.several_sets = fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "),
+                                       names.back());
+    }
+    const Expr part = check_accumulation_over(n, reduction, label_index, inner);
+    if (!combined) {
+      combined = part;
+    } else if (reduction == ir::Reduction::Min || reduction == ir::Reduction::Max) {
+      const ir::Function f = reduction == ir::Reduction::Min ? ir::Function::Min : ir::Function::Max;
+      combined = std::make_shared<ir::Call>(part->type, f, std::vector<Expr>{combined, part}, n.loc);
+    } else {
+      combined = std::make_shared<ir::Binary>(part->type, ir::BinaryOp::Add, combined, part, n.loc);
+    }
+  }
+  return combined;
+}
 
-  const bool has_condition = n.args.size() == expected_max;
+// One set's accumulation: its condition and value checked with the label bound.
+Expr Sema::check_accumulation_over(const ast::Call& n, ir::Reduction reduction, int label_index,
+                                   Scope& inner) {
+  const std::string& name = n.callee.name;
+  const bool has_condition = n.args.size() == (reduction == ir::Reduction::Count ? 2u : 3u);
   Expr condition, body;
   if (has_condition) {
     condition = check(argument_chain(n.args[1], name), inner);

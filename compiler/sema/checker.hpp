@@ -59,6 +59,7 @@ struct Scope {
   std::vector<ir::Label>* labels = nullptr;
   std::vector<int> bound;  // labels visible here, innermost last
   bool in_accumulation = false;
+  std::string several_sets;  // "F and W" when the innermost label runs over several sets
   bool home = true;                      // there is a particle i (not in an observable's statement)
   bool observables = false;              // may read observables, which change during a run
   const ir::UserFn* function = nullptr;  // whose arguments are in scope
@@ -163,6 +164,8 @@ class Sema {
   Type call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args);
   Expr check_random(const ast::Call& n, Scope& scope);
   Expr check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope& scope);
+  Expr check_accumulation_over(const ast::Call& n, ir::Reduction reduction, int label_index,
+                               Scope& inner);
   static const ast::Chain& argument_chain(const ast::Argument& a, const std::string& name);
 
   struct StatementRef {

@@ -320,8 +320,14 @@ Expr Sema::check_indexed(const ast::Indexed& n, Scope& scope) {
   const int var = set.find_var(n.var.name);
   if (var < 0) follow_on_if_failed(n.var.name);
   if (var < 0)
-    fail(n.var.loc, quoted(n.var.name) + " is not a variable of particle set " + set.name +
-                        suggestion(n.var.name, var_names(set)));
+    fail(n.var.loc,
+         quoted(n.var.name) + " is not a variable of particle set " + set.name +
+             suggestion(n.var.name, var_names(set)),
+         !scope.several_sets.empty() && scope.bound.back() == label
+             ? quoted(n.label.name) + " runs over " + scope.several_sets +
+                   ": what it reads must be a variable of each (declare " + n.var.name +
+                   " in " + set.name + " too)"
+             : std::string());
   return std::make_shared<ir::VarRef>(set.vars[var].type, set_index, var, label, n.loc);
 }
 
