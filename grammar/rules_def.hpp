@@ -143,6 +143,7 @@ struct norm_id : locate {};
 struct call_id : locate {};
 struct argument_id : locate {};
 struct label_binding_id : locate {};
+struct boundary_clause_id : locate {};
 struct or_tail_id : locate {};
 struct and_tail_id : locate {};
 struct compare_tail_id : locate {};
@@ -213,6 +214,8 @@ x3::rule<class model_decl_text_id, ast::ModelDecl> const model_decl_text = "a mo
 x3::rule<dim_decl_id, ast::DimDecl> const dim_decl = "a dim declaration";
 x3::rule<class dim_decl_text_id, ast::DimDecl> const dim_decl_text = "a dim declaration";
 x3::rule<domain_decl_id, ast::DomainDecl> const domain_decl = "a domain declaration";
+x3::rule<boundary_clause_id, ast::BoundaryClause> const boundary_clause =
+    "a boundary like 'periodic=(x, y)'";
 x3::rule<tuple_id, std::vector<ast::Chain>> const tuple = "a tuple like (0, 0)";
 x3::rule<param_decl_id, ast::ParamDecl> const param_decl = "a param declaration";
 x3::rule<const_decl_id, ast::ConstDecl> const const_decl = "a const declaration";
@@ -289,7 +292,7 @@ x3::symbols<> const reserved_words = [] {
   x3::symbols<> s;
   s.add("model")("dim")("domain")("param")("const")("observable")("timestep")("output")("every")(
       "fn")("particles")("schedule")("init")("step")("stage")("solve")("iterate")("until")(
-      "limit")("and")("or")("not")("true")("false")("in");
+      "limit")("mirrored")("and")("or")("not")("true")("false")("in");
   return s;
 }();
 auto const word_char = alnum | char_('_');
@@ -407,11 +410,12 @@ auto const model_decl_text_def = (keyword("model") > identifier)[set_model_name]
 auto const dim_decl_def = dim_decl_text;
 auto const dim_decl_text_def = (keyword("dim") > int_literal)[set_dim_value];
 
-// domain_decl = "domain" , "lo" , "=" , tuple , "hi" , "=" , tuple ,
-//   [ "periodic" , "=" , "(" , [ identifier , { "," , identifier } ] , ")" ] ;
+// domain_decl = "domain" , "lo" , "=" , tuple , "hi" , "=" , tuple , { boundary_clause } ;
 auto const domain_decl_def = keyword("domain") > keyword("lo") > '=' > tuple > keyword("hi") >
-                             '=' > tuple >
-                             -(keyword("periodic") > '=' > '(' > -(identifier % ',') > ')');
+                             '=' > tuple > *boundary_clause;
+
+// boundary_clause = identifier , "=" , "(" , [ identifier , { "," , identifier } ] , ")" ;
+auto const boundary_clause_def = identifier > '=' > '(' > -(identifier % ',') > ')';
 
 // tuple = "(" , expression , { "," , expression } , ")" ;
 auto const tuple_def = '(' > (expression % ',') > ')';
@@ -443,7 +447,8 @@ auto const fn_decl_def = keyword("fn") > identifier > '(' > -(fn_param % ',') > 
 auto const fn_param_def = identifier > ':' > identifier;
 
 // var_decl = identifier , ":" , identifier , [ "=" , expression ] ;
-auto const var_decl_def = identifier > ':' > identifier > -('=' > expression);
+auto const var_decl_def =
+    x3::matches[keyword("mirrored")] >> identifier > ':' > identifier > -('=' > expression);
 
 // particles_decl = "particles" , identifier , "(" , expression , ")" , "{" , { var_decl } , "}" ;
 auto const particles_decl_def = keyword("particles") > identifier > '(' > expression > ')' > '{' >
@@ -492,6 +497,8 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     step_number_text, fn_decl, fn_param, schedule_block,
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
+// One BOOST_SPIRIT_DEFINE takes a bounded number of rules (Boost.Preprocessor's limit).
+BOOST_SPIRIT_DEFINE(boundary_clause)
 
 // Whitespace and comments from '#' to the end of the line.
 auto const skipper = x3::space | lexeme['#' >> *(char_ - x3::eol)];

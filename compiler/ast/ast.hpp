@@ -135,10 +135,15 @@ struct ModelDecl : Located {
 struct DimDecl : Located {
   IntLiteral value;
 };
+// periodic=(x, y), reflect=(z), open=(y): what happens at an axis's faces
+struct BoundaryClause : Located {
+  Identifier kind;
+  std::vector<Identifier> axes;
+};
 struct DomainDecl : Located {
   std::vector<Chain> lo;
   std::vector<Chain> hi;
-  boost::optional<std::vector<Identifier>> periodic;
+  std::vector<BoundaryClause> boundaries;
 };
 struct ParamDecl : Located {
   Identifier name;
@@ -164,7 +169,9 @@ struct OutputDecl : Located {
   std::vector<Identifier> names;
   boost::optional<Chain> every;
 };
+// `mirrored v: vec = 0`: turned with the position at a reflecting face
 struct VarDecl : Located {
+  bool mirrored = false;
   Identifier name;
   Identifier type;
   boost::optional<Chain> value;

@@ -65,9 +65,9 @@ struct Printer {
   }
   std::string operator()(const DomainDecl& n) const {
     std::string out = "(domain (lo" + tuple(n.lo) + ") (hi" + tuple(n.hi) + ")";
-    if (n.periodic) {
-      out += " (periodic";
-      for (const Identifier& axis : *n.periodic) out += " " + axis.name;
+    for (const BoundaryClause& b : n.boundaries) {
+      out += " (" + b.kind.name;
+      for (const Identifier& axis : b.axes) out += " " + axis.name;
       out += ")";
     }
     return out + ") " + at(n);
@@ -99,7 +99,7 @@ struct Printer {
   std::string operator()(const ParticlesDecl& n) const {
     std::string out = "(particles " + n.name.name + " " + (*this)(n.count) + ") " + at(n);
     for (const VarDecl& v : n.vars)
-      out += "\n  (var " + v.name.name + " " + v.type.name +
+      out += std::string("\n  (") + (v.mirrored ? "mirrored " : "") + "var " + v.name.name + " " + v.type.name +
              (v.value ? " " + (*this)(*v.value) : "") + ") " + at(v);
     return out;
   }

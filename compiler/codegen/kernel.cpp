@@ -237,6 +237,16 @@ void ModelEmitter::kernel(const Kernel& k) {
   const std::string target_array = array_name(home, st.var);
   if (!buffer.empty()) linef("{}.swap({});", target_array, buffer);
   if (st.var == kAlive) linef("{}.erase_dead();", set_member_[home]);
+  // After the loop: other particles may read this set's mirrored variables in it.
+  if (st.var == kPosition && Domain::any(m_.domain.reflect)) {
+    std::string mirrored;
+    for (std::size_t v = kFirstUserVar; v < m_.sets[home].vars.size(); ++v)
+      if (m_.sets[home].vars[v].mirrored)
+        mirrored += fmt::format(", {}.get<{}>()", set_member_[home], tag(home, static_cast<int>(v)));
+    linef("partc::reflect_through_faces({}, faces_{});", set_member_[home], mirrored);
+  }
+  if (st.var == kPosition && Domain::any(m_.domain.open))
+    linef("{} += partc::leave_through_open_faces({}, faces_);", left_[home], set_member_[home]);
   if (st.var == kPosition || st.var == kAlive) linef("++{};", epoch_[home]);
   line("}");
   line("");
@@ -520,9 +530,7 @@ std::string ModelEmitter::pair_sums_member(const Accumulate& acc, const std::str
 void ModelEmitter::assignment(const Statement& st, const ExpressionNames& names,
                               const std::string& buffer) {
   const std::string target = names.array(st.set, st.var) + "[" + names.labels[0] + "]";
-  const bool wrap = st.var == kPosition &&
-                    std::find(m_.domain.periodic.begin(), m_.domain.periodic.end(), true) !=
-                        m_.domain.periodic.end();
+  const bool wrap = st.var == kPosition && Domain::any(m_.domain.periodic);
   const std::string value = expression(st.value, names);
   if (buffer.empty() && !wrap) {
     linef("{} {} {};", target, assign_op_spelling(st.op), value);

@@ -42,12 +42,14 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   cls_ = codegen::class_name(m_.name);
   members_.reserve(cls_);  // a member or nested type named like the class would be its constructor
   observables_type_ = members_.fresh("Observables");
-  for (const char* fixed : {"params_", "rng_", "step_", "t_", "observables_", "domain_"})
+  for (const char* fixed :
+       {"params_", "rng_", "step_", "t_", "observables_", "domain_", "faces_"})
     members_.reserve(fixed);
   for (const ParticleSet& s : m_.sets) {
     set_member_.push_back(members_.fresh(cpp_name(s.name) + "_"));
     epoch_.push_back(members_.fresh(s.name + "_epoch_"));
     set_type_.push_back(members_.fresh(s.name + "Set"));
+    if (Domain::any(m_.domain.open)) left_.push_back(members_.fresh(s.name + "_left_"));
   }
   for (const Const& c : m_.consts) const_member_.push_back(members_.fresh(cpp_name(c.name) + "_"));
   for (const char* api : {"params",
@@ -68,6 +70,7 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
                           "log_every",
                           "log_row",
                           "solve_report",
+                          "boundary_report",
                           "set_matrix_market",
                           "matrix_market_",
                           "stage_names",
@@ -169,13 +172,18 @@ void ModelEmitter::header() {
   for (int k = 0; k < m_.dim; ++k)
     extent.push_back(fmt::format("[{}, {}]", emit_literal(Type::Real, m_.domain.lo[k]),
                                  emit_literal(Type::Real, m_.domain.hi[k])));
-  std::vector<std::string> periodic;
+  std::vector<std::string> faces;
   static const char* axes[] = {"x", "y", "z", "w"};
-  for (int k = 0; k < m_.dim; ++k)
-    if (m_.domain.periodic[k]) periodic.push_back(axes[k]);
+  for (const auto& [kind, which] : {std::pair{"periodic", &m_.domain.periodic},
+                                    std::pair{"reflecting", &m_.domain.reflect},
+                                    std::pair{"open", &m_.domain.open}}) {
+    std::vector<std::string> in;
+    for (int k = 0; k < m_.dim; ++k)
+      if ((*which)[k]) in.push_back(axes[k]);
+    if (!in.empty()) faces.push_back(fmt::format("{} in {}", kind, fmt::join(in, ", ")));
+  }
   linef("// Model {}: {} dimensions, domain {}, {}.", m_.name, m_.dim, fmt::join(extent, " x "),
-        periodic.empty() ? std::string("not periodic")
-                         : "periodic in " + fmt::format("{}", fmt::join(periodic, ", ")));
+        faces.empty() ? std::string("not periodic") : fmt::format("{}", fmt::join(faces, "; ")));
   std::vector<std::string> std_headers = {"algorithm", "cmath",  "cstdint", "limits",
                                           "map",       "string", "vector"};
   if (!lists_.empty()) std_headers.push_back("optional");
@@ -186,6 +194,7 @@ void ModelEmitter::header() {
       "csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
       "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp",    "vec.hpp"};
   if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
+  if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) headers.push_back("faces.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
   if (!solve_results_.empty())
@@ -261,6 +270,7 @@ void ModelEmitter::public_api() {
   named_stages();
   for_each_set();
   search_report();
+  boundary_report();
   solve_report();
   log();
   line("");
@@ -399,6 +409,18 @@ void ModelEmitter::search_report() {
   for (const auto& [st, lists] : lists_)
     linef("if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count()}});", lists,
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
+  line("return report;");
+  line("}");
+}
+
+// How many particles of each set left through open faces (the driver's summary).
+void ModelEmitter::boundary_report() {
+  if (left_.empty()) return;
+  line("std::vector<std::string> boundary_report() const {");
+  line("std::vector<std::string> report;");
+  for (std::size_t s = 0; s < m_.sets.size(); ++s)
+    linef("report.push_back(\"{}: \" + std::to_string({}) + \" particles left through open faces\");",
+          m_.sets[s].name, left_[s]);
   line("return report;");
   line("}");
 }
@@ -618,6 +640,15 @@ void ModelEmitter::state() {
   }
   linef("partc::Domain<{}> domain_{{Vec{{{{{}}}}}, Vec{{{{{}}}}}, {{{{{}}}}}}};", m_.dim,
         fmt::join(lo, ", "), fmt::join(hi, ", "), fmt::join(periodic, ", "));
+  if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) {
+    std::vector<std::string> reflect, open;
+    for (int k = 0; k < m_.dim; ++k) {
+      reflect.push_back(m_.domain.reflect[k] ? "true" : "false");
+      open.push_back(m_.domain.open[k] ? "true" : "false");
+    }
+    linef("partc::Faces<{}> faces_{{domain_.lo, domain_.hi, {{{{{}}}}}, {{{{{}}}}}}};", m_.dim,
+          fmt::join(reflect, ", "), fmt::join(open, ", "));
+  }
   line("partc::CounterRng rng_;");
   line("std::int64_t step_ = 0;");
   if (m_.timestep) line("double t_ = 0;  // advanced by the timestep");
@@ -626,6 +657,9 @@ void ModelEmitter::state() {
     linef("{} {};", set_type_[s], set_member_[s]);
     linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],
           m_.sets[s].name);
+    if (!left_.empty())
+      linef("std::int64_t {} = 0;  // particles of {} that left through an open face", left_[s],
+            m_.sets[s].name);
   }
   for (const auto& [key, search] : searches_) {
     if (key.second == SearchChoice::Auto)

@@ -129,6 +129,7 @@ class ModelEmitter {
   void step();
   void for_each_set();
   void search_report();
+  void boundary_report();
   void solve_report();
   void start_clock();
   bool has_user_observables() const;
@@ -213,6 +214,7 @@ class ModelEmitter {
   std::string cls_, observables_type_;
   NameTable members_;
   std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
+  std::vector<std::string> left_;  // per set, with open faces: how many left
   std::map<SearchKey, std::string> searches_;
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve

@@ -8,6 +8,7 @@
 // only look derive from Visitor (ir/visitor.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -264,6 +265,7 @@ struct Variable {
   Expr initial;  // per particle at creation; null means zero
   bool builtin;  // p, id, alive
   Location loc;
+  bool mirrored = false;  // a vec turned with its particle at a reflecting face
 };
 
 // The builtin variables sit first in every set, in this order.
@@ -342,9 +344,15 @@ struct Stage {
   Location loc;
 };
 
+// Per axis, what happens at the faces lo and hi: periodic (wraps), reflect
+// (a position past a face is mirrored back in), open (a particle past a face
+// leaves its set, counted), or nothing (unbounded).
 struct Domain {
   std::vector<double> lo, hi;
-  std::vector<bool> periodic;
+  std::vector<bool> periodic, reflect, open;
+  static bool any(const std::vector<bool>& axes) {
+    return std::find(axes.begin(), axes.end(), true) != axes.end();
+  }
 };
 
 struct Model;

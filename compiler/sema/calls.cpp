@@ -42,7 +42,8 @@ const std::map<std::string, ir::Reduction> kReductions = {
 
 bool Sema::is_builtin_name(const std::string& name) {
   return kFunctions.count(name) || kReductions.count(name) || name == "dx" || name == "vec" ||
-         name == "if" || name == "pi" || is_random_function(name);
+         name == "if" || name == "pi" || name == "lo" || name == "hi" ||
+         is_random_function(name);
 }
 
 bool Sema::is_random_function(const std::string& name) {

@@ -85,20 +85,47 @@ void Sema::check_domain(const ast::DomainDecl& decl) {
     if (!(model_.domain.lo[k] < model_.domain.hi[k]))
       fail(decl.hi[k].loc, "the domain is empty along " + std::string(kAxisNames[k]) +
                                ": hi must be greater than lo");
-  model_.domain.periodic.assign(model_.dim, false);
-  if (!decl.periodic) return;
-  for (const ast::Identifier& axis : *decl.periodic) {
-    const auto* it =
-        std::find(std::begin(kAxisNames), std::begin(kAxisNames) + model_.dim, axis.name);
-    if (it == std::begin(kAxisNames) + model_.dim)
-      fail(axis.loc,
-           "unknown axis " + quoted(axis.name) + " for a " + std::to_string(model_.dim) +
-               "-dimensional domain",
-           "axes are named x, y, z, w");
-    const auto k = it - std::begin(kAxisNames);
-    if (model_.domain.periodic[k]) fail(axis.loc, "axis " + quoted(axis.name) + " listed twice");
-    model_.domain.periodic[k] = true;
+  ir::Domain& d = model_.domain;
+  d.periodic.assign(model_.dim, false);
+  d.reflect.assign(model_.dim, false);
+  d.open.assign(model_.dim, false);
+  std::vector<std::string> kind_of(model_.dim);
+  for (const ast::BoundaryClause& clause : decl.boundaries) {
+    const std::string& kind = clause.kind.name;
+    std::vector<bool>* axes = kind == "periodic" ? &d.periodic
+                              : kind == "reflect" ? &d.reflect
+                              : kind == "open"    ? &d.open
+                                                  : nullptr;
+    if (!axes)
+      fail(clause.kind.loc,
+           "unknown boundary " + quoted(kind) +
+               suggestion(kind, {"periodic", "reflect", "open"}),
+           "a domain's faces are periodic=(...), reflect=(...) or open=(...); an axis in none "
+           "of them is unbounded");
+    for (const ast::Identifier& axis : clause.axes) {
+      const auto* it =
+          std::find(std::begin(kAxisNames), std::begin(kAxisNames) + model_.dim, axis.name);
+      if (it == std::begin(kAxisNames) + model_.dim)
+        fail(axis.loc,
+             "unknown axis " + quoted(axis.name) + " for a " + std::to_string(model_.dim) +
+                 "-dimensional domain",
+             "axes are named x, y, z, w");
+      const auto k = it - std::begin(kAxisNames);
+      if (kind_of[k] == kind) fail(axis.loc, "axis " + quoted(axis.name) + " listed twice");
+      if (!kind_of[k].empty())
+        fail(axis.loc, "axis " + quoted(axis.name) + " is already " + kind_of[k],
+             "each axis has one kind of boundary");
+      kind_of[k] = kind;
+      (*axes)[k] = true;
+    }
   }
+  if (ir::Domain::any(d.reflect)) return;
+  for (const ir::ParticleSet& set : model_.sets)
+    for (const ir::Variable& var : set.vars)
+      if (var.mirrored)
+        fail(var.loc, "variable " + quoted(var.name) + " is mirrored, but no face reflects",
+             "mirrored variables turn at reflecting faces: declare them in the domain, as in "
+             "reflect=(y)");
 }
 
 void Sema::declare_global(const ast::Identifier& name, const char* kind) {
@@ -215,7 +242,10 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
           initial =
               convert(check(*var.value, scope), type, var.value->loc, "variable " + var.name.name);
         }
-        set.vars.push_back({var.name.name, type, initial, false, var.loc});
+        if (var.mirrored && type != Type::Vec)
+          fail(var.name.loc, "only a vec can be mirrored: " + quoted(var.name.name) + " is " +
+                                 a_type(type));
+        set.vars.push_back({var.name.name, type, initial, false, var.loc, var.mirrored});
       });
     });
   }

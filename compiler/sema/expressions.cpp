@@ -227,6 +227,16 @@ Expr Sema::check(const ast::Operand& operand, Scope& scope) {
 
 Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
   if (n.name == "pi") return std::make_shared<ir::Literal>(Type::Real, M_PI, n.loc);
+  if (n.name == "lo" || n.name == "hi") {
+    // The domain's corners, for walls: p[i].y - lo.y is the distance to the floor.
+    const std::vector<double>& corner = n.name == "lo" ? model_.domain.lo : model_.domain.hi;
+    if (corner.empty())
+      fail(n.loc, quoted(n.name) + ", a corner of the domain, is known in statements only",
+           "declarations are checked before the domain, whose bounds may name them");
+    std::vector<Expr> components;
+    for (double c : corner) components.push_back(std::make_shared<ir::Literal>(Type::Real, c, n.loc));
+    return std::make_shared<ir::MakeVec>(components, n.loc);
+  }
   if (n.name == "dx") {
     if (!scope.in_accumulation)
       fail(n.loc, "dx is only defined inside an accumulation",

@@ -21,7 +21,8 @@
 // - A model with `output NAME, ...` logs those observables (thermo_log.hpp):
 //   a progress row on the terminal every few steps (the model's interval, or
 //   --log-every; not with --quiet), and every step into --log FILE.csv.
-// - The summary ends with the model's search_report(): each neighbour search
+// - The summary says how many particles left through open faces, if any are
+//   open, and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
 #pragma once
 
@@ -89,6 +90,14 @@ template <class Model, class = void>
 struct has_solves : std::false_type {};
 template <class Model>
 struct has_solves<Model, std::void_t<decltype(std::declval<const Model&>().solve_report())>>
+    : std::true_type {};
+
+// Models with open faces count the particles that left through them.
+template <class Model, class = void>
+struct has_open_faces : std::false_type {};
+template <class Model>
+struct has_open_faces<Model,
+                      std::void_t<decltype(std::declval<const Model&>().boundary_report())>>
     : std::true_type {};
 
 template <class Model, class = void>
@@ -313,6 +322,8 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
            << "\n";
     });
   });
+  if constexpr (has_open_faces<Model>::value)
+    for (const std::string& line : model.boundary_report()) text << line << "\n";
   if constexpr (has_solves<Model>::value)
     for (const std::string& line : model.solve_report()) text << line << "\n";
   const std::vector<SearchReport> searches = model.search_report();
