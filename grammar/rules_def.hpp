@@ -435,9 +435,11 @@ auto const set_timestep = [](auto& ctx) { _val(ctx).value = std::move(_attr(ctx)
 auto const timestep_decl_def = timestep_decl_text;
 auto const timestep_decl_text_def = (keyword("timestep") > '=' > expression)[set_timestep];
 
-// output_decl = "output" , identifier , { "," , identifier } , [ "every" , expression ] ;
-auto const output_decl_def = keyword("output") > (identifier % ',') >
-                             -(keyword("every") > expression);
+// output_decl = "output" , [ identifier , ":" ] , identifier , { "," , identifier } ,
+//   [ "every" , expression ] ;
+// (The lookahead: a failed optional would still leave its identifier in the attribute.)
+auto const output_decl_def = keyword("output") > -(&(identifier >> ':') >> identifier >> ':') >
+                             (identifier % ',') > -(keyword("every") > expression);
 
 // fn_decl = "fn" , identifier , "(" , [ fn_param , { "," , fn_param } ] , ")" ,
 //           "=" , expression ;

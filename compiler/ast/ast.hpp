@@ -165,7 +165,10 @@ struct TimestepDecl : Located {
   Chain value;
 };
 // output e_kin, p_tot every 10: the observables the run logs, how often
+// `output e_kin, t every 10` (observables), or `output F: v, rho every 100`
+// (the variables of set F in VTK frames)
 struct OutputDecl : Located {
+  boost::optional<Identifier> set;
   std::vector<Identifier> names;
   boost::optional<Chain> every;
 };

@@ -86,6 +86,7 @@ struct Printer {
   }
   std::string operator()(const OutputDecl& n) const {
     std::string out = "(output";
+    if (n.set) out += " " + n.set->name + ":";
     for (const Identifier& name : n.names) out += " " + name.name;
     if (n.every) out += " (every " + (*this)(*n.every) + ")";
     return out + ") " + at(n);

@@ -71,6 +71,7 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
                           "log_row",
                           "solve_report",
                           "boundary_report",
+                          "frames",
                           "set_matrix_market",
                           "matrix_market_",
                           "stage_names",
@@ -197,6 +198,7 @@ void ModelEmitter::header() {
   if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) headers.push_back("faces.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
+  if (!m_.frames.empty()) headers.push_back("vtk.hpp");
   if (!solve_results_.empty())
     for (const char* h :
          {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
@@ -273,6 +275,7 @@ void ModelEmitter::public_api() {
   boundary_report();
   solve_report();
   log();
+  frames();
   line("");
   line("// Throws partc::NumericalError naming the first NaN or Inf found.");
   line("void check_finite() const {");
@@ -477,6 +480,23 @@ bool ModelEmitter::has_user_observables() const {
 // What the driver logs (`output ...`): columns, interval and one row; step
 // first, t next when the model has a timestep. Vecs take one column each
 // component, named as CSV files name them (p_tot_0, p_tot_1).
+// What VTK frames hold (`output SET: ...`), for the driver.
+void ModelEmitter::frames() {
+  if (m_.frames.empty()) return;
+  const ExpressionNames names = base_names();
+  line("// The VTK frames the model asks for: each set's variables and interval.");
+  line("std::vector<partc::FrameSpec> frames() const {");
+  line("return {");
+  for (const Frames& f : m_.frames) {
+    std::vector<std::string> vars;
+    for (int v : f.vars) vars.push_back("\"" + m_.sets[f.set].vars[v].name + "\"");
+    linef("{{\"{}\", {{{}}}, {}}},  // {}", m_.sets[f.set].name, fmt::join(vars, ", "),
+          f.every ? expression(f.every, names) : "1", source_line(f.loc));
+  }
+  line("};");
+  line("}");
+}
+
 void ModelEmitter::log() {
   if (m_.log.observables.empty()) return;
   std::vector<int> logged = {kStep};

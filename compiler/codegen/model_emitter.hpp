@@ -130,6 +130,7 @@ class ModelEmitter {
   void for_each_set();
   void search_report();
   void boundary_report();
+  void frames();
   void solve_report();
   void start_clock();
   bool has_user_observables() const;

@@ -259,6 +259,15 @@ struct Log {
   Location loc;
 };
 
+// `output F: v, rho every 100`: what VTK frames hold of a set, and how
+// often they are written. With any of these, sets not named get no frames.
+struct Frames {
+  int set;
+  std::vector<int> vars;  // into ParticleSet::vars; id and p are always written
+  Expr every;             // an int; null: every step
+  Location loc;
+};
+
 struct Variable {
   std::string name;
   Type type;
@@ -371,6 +380,7 @@ struct Model {
   std::vector<Observable> observables;  // step and t first
   Expr timestep;                        // null: t is not defined
   Log log;
+  std::vector<Frames> frames;
   std::vector<Stage> stages;  // in file order
   int random_streams = 0;
   int accumulations = 0;

@@ -117,6 +117,8 @@ class Sema {
   void declare_observable(const ast::ObservableDecl& decl);
   void check_timestep(const ast::TimestepDecl& decl);
   void check_output(const ast::OutputDecl& decl);
+  void check_frames(const ast::OutputDecl& decl);
+  Expr check_output_interval(const ast::Chain& every);
 
   // ---- statements.cpp: stages, statements and the schedule ----------------
   void check_stage(const ast::StageBlock& block);

@@ -293,7 +293,45 @@ void Sema::check_timestep(const ast::TimestepDecl& decl) {
 }
 
 // Which observables the run logs: step always, t when there is a timestep.
+// The output interval: an int of params and consts, at least 1.
+Expr Sema::check_output_interval(const ast::Chain& every) {
+  Scope scope;
+  scope.context = "the output interval";
+  Expr e = convert(check(every, scope), Type::Int, every.loc, "the output interval");
+  if (auto value = evaluate_constant(e, model_); value && !(*value >= 1))
+    fail(every.loc, "the output interval must be at least 1 step");
+  return e;
+}
+
+void Sema::check_frames(const ast::OutputDecl& decl) {
+  const int set = set_named(*decl.set);
+  for (const ir::Frames& f : model_.frames)
+    if (f.set == set)
+      fail(decl.set->loc, "a second output declaration for set " + quoted(decl.set->name),
+           "the first is on line " + std::to_string(file_.line_column(f.loc.begin).line));
+  const ir::ParticleSet& s = model_.sets[set];
+  ir::Frames frames{set, {}, nullptr, decl.loc};
+  for (const ast::Identifier& name : decl.names) {
+    const int var = s.find_var(name.name);
+    follow_on_if_failed(name.name);
+    if (var < 0) {
+      std::vector<std::string> known;
+      for (const ir::Variable& v : s.vars) known.push_back(v.name);
+      fail(name.loc, quoted(name.name) + " is not a variable of particle set " + s.name +
+                         suggestion(name.name, known));
+    }
+    if (var == ir::kPosition || var == ir::kId)
+      fail(name.loc, quoted(name.name) + " is always written", "list only the other variables");
+    if (std::find(frames.vars.begin(), frames.vars.end(), var) != frames.vars.end())
+      fail(name.loc, quoted(name.name) + " listed twice");
+    frames.vars.push_back(var);
+  }
+  if (decl.every) frames.every = check_output_interval(*decl.every);
+  model_.frames.push_back(std::move(frames));
+}
+
 void Sema::check_output(const ast::OutputDecl& decl) {
+  if (decl.set) return check_frames(decl);
   if (model_.log.loc.end != 0)
     fail(decl.loc, "a second output declaration",
          "the first is on line " + std::to_string(file_.line_column(model_.log.loc.begin).line));
@@ -305,8 +343,8 @@ void Sema::check_output(const ast::OutputDecl& decl) {
       for (const ir::ParticleSet& s : model_.sets)
         if (s.find_var(name.name) >= 0)
           fail(name.loc, quoted(name.name) + " is a particle variable, not an observable",
-               "output lists observables; the driver writes particle variables with --output and "
-               "--vtk, or sum them into an observable: observable total: real = 0");
+               "output lists observables; choose the variables VTK frames hold with output " +
+                   s.name + ": " + name.name + ", ... (or sum them into an observable)");
       std::vector<std::string> known;
       for (const ir::Observable& o : model_.observables) known.push_back(o.name);
       fail(name.loc, "unknown observable " + quoted(name.name) + suggestion(name.name, known),
@@ -316,15 +354,7 @@ void Sema::check_output(const ast::OutputDecl& decl) {
       fail(name.loc, quoted(name.name) + " listed twice");
     chosen.push_back(it->second.index);
   }
-  if (decl.every) {
-    Scope scope;
-    scope.context = "the output interval";
-    Expr every =
-        convert(check(*decl.every, scope), Type::Int, decl.every->loc, "the output interval");
-    if (auto value = evaluate_constant(every, model_); value && !(*value >= 1))
-      fail(decl.every->loc, "the output interval must be at least 1 step");
-    model_.log.every = every;
-  }
+  if (decl.every) model_.log.every = check_output_interval(*decl.every);
   model_.log.observables = std::move(chosen);
   model_.log.loc = decl.loc;
 }

@@ -18,6 +18,10 @@
 //   constructed model, before init or load: generated models hold their sets
 //   as members, so this needs no extra API.
 // - VTK "time" is the model's t when it has a timestep, else the step number.
+// - VTK frames hold every set and variable, unless the model says
+//   `output SET: v, rho every K`: then only the sets it names, with id, the
+//   points and those variables, every K steps (--every overrides K).
+//   --output always writes the whole state, so that --input can read it back.
 // - A model with `output NAME, ...` logs those observables (thermo_log.hpp):
 //   a progress row on the terminal every few steps (the model's interval, or
 //   --log-every; not with --quiet), and every step into --log FILE.csv.
@@ -63,7 +67,7 @@ struct DriverOptions {
   std::vector<std::pair<std::string, std::string>> inputs;  // (set, file)
   std::string output;                                       // "" = no CSV output
   std::string vtk_prefix;                                   // "" = no VTK output
-  std::int64_t every = 1;
+  std::optional<std::int64_t> every;  // VTK interval; default: the model's, else 1
   std::int64_t check_every = 1;
   std::string log;            // "" = no CSV time series
   std::string matrix_market;  // "" = no Matrix Market files of solves
@@ -98,6 +102,13 @@ struct has_open_faces : std::false_type {};
 template <class Model>
 struct has_open_faces<Model,
                       std::void_t<decltype(std::declval<const Model&>().boundary_report())>>
+    : std::true_type {};
+
+// Models with `output SET: ...` say which sets and variables VTK frames hold.
+template <class Model, class = void>
+struct has_frames : std::false_type {};
+template <class Model>
+struct has_frames<Model, std::void_t<decltype(std::declval<const Model&>().frames())>>
     : std::true_type {};
 
 template <class Model, class = void>
@@ -175,7 +186,7 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
       options.seed = parse_count<std::uint64_t>(option, value());
     } else if (option == "--every") {
       options.every = parse_count<std::int64_t>(option, value());
-      if (options.every == 0)
+      if (options.every == std::int64_t{0})
         throw UsageError("--every must be at least 1 (step 0 is always written)");
     } else if (option == "--check-every") {
       options.check_every = parse_count<std::int64_t>(option, value());
@@ -263,7 +274,8 @@ void print_help(std::ostream& out, const Model& model) {
        << "                       --input SET=FILE.csv, once per set (the others start empty)\n"
        << "  --output FILE.csv    write the final state (FILE_SET.csv with several sets)\n"
        << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
-       << "  --every M            VTK every M steps (default 1; step 0 is always written)\n"
+       << "  --every M            VTK every M steps (default: the model's output interval, else 1;\n"
+       << "                       step 0 is always written)\n"
        << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n";
   if constexpr (has_stages<Model>::value)
     text << "  --stage NAME[:K]     run a named stage K times (default 1) after init, before\n"
@@ -348,9 +360,16 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   }
 
   const std::vector<std::string> sets = set_names(model);
+  // Per set: its frames' variables (all of them without `output SET: ...`).
+  std::map<std::string, FrameSpec> frames;
+  if constexpr (has_frames<Model>::value) {
+    for (FrameSpec& f : model.frames()) frames.emplace(f.set, std::move(f));
+  } else {
+    for (const auto& set : sets) frames.emplace(set, FrameSpec{set, {}, 1});
+  }
   std::map<std::string, VtkSeries> series;
   if (!options.vtk_prefix.empty())
-    for (const auto& set : sets) series.emplace(set, options.vtk_prefix + "_" + set);
+    for (const auto& [set, unused] : frames) series.emplace(set, options.vtk_prefix + "_" + set);
   const auto due = [](std::int64_t step, std::int64_t every) {
     return every > 0 && step % every == 0;
   };
@@ -374,9 +393,13 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
     double time = static_cast<double>(step);
     if constexpr (has_time<Model>::value) time = model.time();
-    if (!series.empty() && due(step, options.every))
-      model.for_each_set(
-          [&](const char* name, const auto& set) { series.at(name).write(set, step, time); });
+    model.for_each_set([&](const char* name, const auto& set) {
+      const auto s = series.find(name);
+      if (s == series.end()) return;
+      const FrameSpec& f = frames.at(name);
+      if (due(step, options.every.value_or(f.every)))
+        s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
+    });
   }
   if (options.check_every > 0 && !checked) model.check_finite();
   if (log) log->close();

@@ -3,6 +3,8 @@
 //   write_vtu(path, set)     one UnstructuredGrid (.vtu) of VTK_VERTEX cells
 //   VtkSeries series(prefix) PREFIX_000042.vtu per written step, plus
 //                            PREFIX.pvd listing them with their times
+//   FrameSpec                which variables a set's frames hold, how often
+//                            (a model's `output SET: ...`)
 //
 // Points and every point-data array are in id order, so that particle k of
 // one file is particle k of the next even when the set reorders itself.
@@ -100,8 +102,18 @@ void write_vtk_array(std::ostream& out, const char* type, const std::string& nam
 
 }  // namespace detail
 
+// `output F: v, rho every 100`: frames of set F hold id, the points, v and
+// rho, every 100 steps.
+struct FrameSpec {
+  std::string set;
+  std::vector<std::string> variables;
+  std::int64_t every;
+};
+
+// Writes id, the points and `variables` (null: every variable).
 template <class Set>
-void write_vtu(const std::string& path, const Set& set) {
+void write_vtu(const std::string& path, const Set& set,
+               const std::vector<std::string>* variables = nullptr) {
   constexpr int dim = Set::dim;
   const auto order = detail::id_order(set);
   const std::size_t n = order.size();
@@ -117,6 +129,9 @@ void write_vtu(const std::string& path, const Set& set) {
     set.for_each_variable([&](const char* name, const auto& values) {
       using S = typename std::decay_t<decltype(values)>::value_type;
       if (std::strcmp(name, "p") == 0 && dim <= 3) return;  // the points say it all
+      if (variables && std::strcmp(name, "p") != 0 &&
+          std::find(variables->begin(), variables->end(), name) == variables->end())
+        return;
       const int components =
           StorageTraits<S>::is_vec ? std::max(StorageTraits<S>::components, 3) : 1;
       detail::write_vtk_array(out, detail::vtk_type_name<S>(), name, components, n,
@@ -153,11 +168,12 @@ class VtkSeries {
   explicit VtkSeries(std::string prefix) : prefix_(std::move(prefix)) {}
 
   template <class Set>
-  void write(const Set& set, std::int64_t step, double time) {
+  void write(const Set& set, std::int64_t step, double time,
+             const std::vector<std::string>* variables = nullptr) {
     char number[24];
     std::snprintf(number, sizeof number, "%06lld", static_cast<long long>(step));
     const std::string path = prefix_ + "_" + number + ".vtu";
-    write_vtu(path, set);
+    write_vtu(path, set, variables);
     // ParaView resolves the file names of a .pvd relative to the .pvd itself.
     frames_.emplace_back(time, std::filesystem::path(path).filename().string());
     detail::write_file_atomically(prefix_ + ".pvd", [&](std::ostream& out) {
