@@ -243,8 +243,8 @@ void ModelEmitter::kernel(const Kernel& k) {
     for (std::size_t v = kFirstUserVar; v < m_.sets[home].vars.size(); ++v)
       if (m_.sets[home].vars[v].mirrored)
         mirrored += fmt::format(", {}.get<{}>()", set_member_[home], tag(home, static_cast<int>(v)));
-    linef("// Positions past a reflecting face are mirrored back in{}.",
-          mirrored.empty() ? "" : ", and the mirrored variables turn with them");
+    linef("// Past a reflecting face: mirrored back in{}.",
+          mirrored.empty() ? "" : ", the mirrored variables turned");
     linef("partc::reflect_through_faces({}, faces_{});", set_member_[home], mirrored);
   }
   if (st.var == kPosition && Domain::any(m_.domain.open))
