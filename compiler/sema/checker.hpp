@@ -191,6 +191,7 @@ class Sema {
     return false;
   }
   std::set<std::string> failed_names_;  // declared with errors: later uses are follow-ons
+  std::set<std::string> failed_sets_;   // sets whose name clashed with another declaration
   std::map<std::string, Location> globals_;
   std::map<std::string, Name> names_;
   std::map<std::string, StatementRef> statement_names_;

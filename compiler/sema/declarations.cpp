@@ -202,7 +202,12 @@ void Sema::declare_fn(const ast::FnDecl& decl) {
 }
 
 void Sema::declare_set(const ast::ParticlesDecl& decl) {
-  declare_global(decl.name, "particle set");
+  try {
+    declare_global(decl.name, "particle set");
+  } catch (const SemaError&) {
+    failed_sets_.insert(decl.name.name);
+    throw;
+  }
   ir::ParticleSet set;
   set.name = decl.name.name;
   set.loc = decl.loc;

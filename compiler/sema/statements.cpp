@@ -128,6 +128,8 @@ int Sema::resolve_stage_set(const ast::StageBlock& block, const ast::Identifier*
 
 int Sema::set_named(const ast::Identifier& name) {
   auto it = names_.find(name.name);
+  if ((it == names_.end() || it->second.kind != Name::Set) && failed_sets_.count(name.name))
+    throw SemaError{{}, true};
   if (it == names_.end() || it->second.kind != Name::Set)
     fail(name.loc,
          "unknown particle set " + quoted(name.name) + suggestion(name.name, set_names()));
