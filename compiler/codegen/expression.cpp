@@ -72,7 +72,7 @@ class Printer {
 
   Printed print(const Expr& e) {
     switch (e->kind) {
-      case ExprKind::Literal: return {emit_literal(e->type, as<Literal>(e)->value), kPrimary};
+      case ExprKind::Literal: return {emit_literal(e->type, *as<Literal>(e)), kPrimary};
       case ExprKind::ParamRef: return {names_.params.at(as<ParamRef>(e)->param), kPrimary};
       case ExprKind::ConstRef: return {names_.consts[as<ConstRef>(e)->constant], kPrimary};
       case ExprKind::ObservableRef:
@@ -117,6 +117,15 @@ class Printer {
     return {"-" + operand, kUnary};
   }
 
+  // True when C++ types e as a 32-bit int: an int literal, or a conditional
+  // of them. Everything else int in generated code is std::int64_t.
+  static bool is_cpp_int(const Expr& e) {
+    if (e->type != Type::Int) return false;
+    if (as<Literal>(e)) return true;
+    auto c = as<Select>(e);
+    return c && is_cpp_int(c->then) && is_cpp_int(c->otherwise);
+  }
+
   // A branch of c ? a : b, converted to the result's type: an int branch
   // beside a real one must not make C++ pick a type of its own.
   std::string branch(const Expr& e, Type type) {
@@ -133,6 +142,10 @@ class Printer {
               kPrimary};
     const int p = precedence_of(n.op);
     std::string lhs = at_least(n.lhs, p);
+    // Sema folds literal op literal; a literal beside if(c, 100000, 3) would
+    // still be C++ int arithmetic, which overflows: one side made 64-bit.
+    if (n.type == Type::Int && is_cpp_int(n.lhs) && is_cpp_int(n.rhs))
+      lhs = "std::int64_t{" + print(n.lhs).text + "}";
     // int / int is real division in .part.
     if (n.op == BinaryOp::Div && n.lhs->type == Type::Int && n.rhs->type == Type::Int)
       lhs = "static_cast<double>(" + print(n.lhs).text + ")";
@@ -203,13 +216,21 @@ class Printer {
 
 }  // namespace
 
+std::string emit_literal(Type type, const Literal& lit) {
+  if (type != Type::Int || lit.type != Type::Int) return emit_literal(type, lit.value);
+  const std::int64_t v = lit.integer;
+  // Beyond 32 bits, typed as the model's ints: an LL literal beside an
+  // std::int64_t (long) would make a call's template deduction ambiguous.
+  if (v == std::numeric_limits<std::int64_t>::min()) return "std::numeric_limits<std::int64_t>::min()";
+  const bool small = v >= std::numeric_limits<std::int32_t>::min() + 1 &&
+                     v <= std::numeric_limits<std::int32_t>::max();
+  return small ? std::to_string(v) : "std::int64_t{" + std::to_string(v) + "}";
+}
+
 std::string emit_literal(Type type, double value) {
   switch (type) {
     case Type::Bool: return value != 0 ? "true" : "false";
-    case Type::Int: {
-      const auto v = static_cast<long long>(value);
-      return std::llabs(v) < (1LL << 31) ? std::to_string(v) : std::to_string(v) + "LL";
-    }
+    case Type::Int: return emit_literal(type, Literal(static_cast<std::int64_t>(value), Location{}));
     case Type::Real:
     case Type::Vec: {
       if (std::isinf(value))

@@ -33,6 +33,8 @@ std::string emit_operand(const ir::Expr& e, ir::BinaryOp operand_of, const ir::M
 
 // A literal of the given type, e.g. "0.0", "3", "true".
 std::string emit_literal(ir::Type type, double value);
+// As `type`; an int exactly, in all 64 bits.
+std::string emit_literal(ir::Type type, const ir::Literal& literal);
 
 // The C++ type holding a value of `type` in a model of dimension `dim`.
 std::string cpp_type(ir::Type type);

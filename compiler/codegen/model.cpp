@@ -221,7 +221,7 @@ void ModelEmitter::public_types() {
   line("struct Params {");
   for (const Param& p : m_.params)
     linef("{} {} = {};  // {}", cpp_type(p.type), cpp_name(p.name),
-          emit_literal(p.type, as<Literal>(p.default_value)->value), source_line(p.loc));
+          emit_literal(p.type, *as<Literal>(p.default_value)), source_line(p.loc));
   line("};");
   if (has_user_observables()) {
     line("");
@@ -295,7 +295,7 @@ void ModelEmitter::param_info() {
   line("return {");
   for (const Param& p : m_.params)
     linef("{{\"{}\", \"{}\", \"{}\"}},", p.name, type_name(p.type),
-          emit_literal(p.type, as<Literal>(p.default_value)->value));
+          emit_literal(p.type, *as<Literal>(p.default_value)));
   line("};");
   line("}");
   line("");
@@ -372,7 +372,7 @@ void ModelEmitter::start_clock() {
     const Observable& obs = m_.observables[o];
     const Literal* literal = as<Literal>(obs.initial);
     linef("observables_.{} = {};", cpp_name(obs.name),
-          literal ? emit_literal(obs.type, literal->value)
+          literal ? emit_literal(obs.type, *literal)
                   : expression(obs.initial, initialiser_names(0)));
   }
 }
@@ -648,7 +648,9 @@ void ModelEmitter::state() {
     const Const& k = m_.consts[c];
     if (auto value = evaluate_constant(k.value, m_))
       linef("static constexpr {} {} = {};  // {}", cpp_type(k.type), const_member_[c],
-            emit_literal(k.type, *value), source_text(k.loc));
+            as<Literal>(k.value) ? emit_literal(k.type, *as<Literal>(k.value))
+                                 : emit_literal(k.type, *value),
+            source_text(k.loc));
     else
       linef("{} {}{{}};  // {}", cpp_type(k.type), const_member_[c], source_text(k.loc));
   }

@@ -53,11 +53,24 @@ const Node* as(const Expr& e) {
   return e && e->kind == Node::node_kind ? static_cast<const Node*>(e.get()) : nullptr;
 }
 
-// A literal bool, int or real (the type says which field holds it).
+// A literal bool, int or real. An int is exact in `integer` (all 64 bits);
+// `value` holds every literal as a double (ints rounded beyond 2^53).
 struct Literal : ExprNode {
   static constexpr ExprKind node_kind = ExprKind::Literal;
-  Literal(Type t, double v, Location l) : ExprNode(node_kind, t, l), value(v) {}
-  const double value;  // ints up to 2^53 and bools (0/1) are exact in a double
+  Literal(Type t, double v, Location l)
+      : ExprNode(node_kind, t, l), value(v), integer(exact_integer(t, v)) {}
+  Literal(std::int64_t i, Location l)
+      : ExprNode(node_kind, Type::Int, l), value(static_cast<double>(i)), integer(i) {}
+  const double value;
+  const std::int64_t integer;
+
+ private:
+  // Sema refuses int values outside 64 bits before they reach a Literal.
+  static std::int64_t exact_integer(Type t, double v) {
+    return t == Type::Int && v >= -9223372036854775808.0 && v < 9223372036854775808.0
+               ? static_cast<std::int64_t>(v)
+               : 0;
+  }
 };
 
 struct ParamRef : ExprNode {

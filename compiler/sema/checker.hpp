@@ -149,6 +149,8 @@ class Sema {
 
   Expr check(const ast::Chain& chain, Scope& scope);
   static ir::BinaryOp binary_op(const std::string& s);
+  Expr fold_int_literals(ir::BinaryOp op, const Expr& a, const Expr& b, Location loc,
+                         Location op_loc);
   Expr binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc);
   void warn_if_raw_displacement(const ir::ExprNode& a, const ir::ExprNode& b, Location loc);
   struct CheckOperand;

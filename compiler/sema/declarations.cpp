@@ -175,6 +175,17 @@ void Sema::declare_const(const ast::ConstDecl& decl) {
   Scope scope;
   scope.context = "a const";
   Expr value = check(decl.value, scope);
+  // A const folded at compile time is emitted as a C++ literal: it must be one.
+  if (auto folded = evaluate_constant(value, model_)) {
+    if ((value->type == Type::Real || value->type == Type::Vec) && !std::isfinite(*folded))
+      fail(decl.value.loc, "const " + quoted(decl.name.name) + " is " +
+                               (std::isnan(*folded) ? "NaN" : *folded > 0 ? "+inf" : "-inf"),
+           "a const must be a finite number: check its arguments' ranges (sqrt(-1), log(0), 1 / 0)");
+    if (value->type == Type::Int && !ir::as<ir::Literal>(value) && std::abs(*folded) > 0x1p53)
+      fail(decl.value.loc, "const " + quoted(decl.name.name) + " is an int beyond 2^53 computed from "
+                               "other consts, which partc cannot fold exactly",
+           "write its value as one literal, or make it a real");
+  }
   model_.consts.push_back({decl.name.name, value->type, value, decl.loc});
   names_.emplace(decl.name.name, Name{Name::Const, static_cast<int>(model_.consts.size() - 1)});
 }

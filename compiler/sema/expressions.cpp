@@ -1,6 +1,7 @@
 // Sema: names, operators, conversions between types.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "ir/constant.hpp"
@@ -162,14 +163,47 @@ Expr Sema::binary(ir::BinaryOp op, Expr a, Expr b, Location loc, Location op_loc
       result = Type::Bool;
       break;
   }
+  if (result == Type::Int)
+    if (Expr folded = fold_int_literals(op, a, b, loc, op_loc)) return folded;
   return std::make_shared<ir::Binary>(result, op, a, b, loc);
+}
+
+// Int arithmetic on two literals is done here, exactly in 64 bits, so that
+// the C++ compiler never computes it in 32-bit `int` (100000 * 100000), and
+// an overflow is an error at its place rather than wrong code.
+Expr Sema::fold_int_literals(ir::BinaryOp op, const Expr& a, const Expr& b, Location loc,
+                             Location op_loc) {
+  const auto *x = ir::as<ir::Literal>(a), *y = ir::as<ir::Literal>(b);
+  if (!x || !y) return nullptr;
+  const std::int64_t p = x->integer, q = y->integer;
+  std::int64_t r = 0;
+  bool overflow = false;
+  switch (op) {
+    case ir::BinaryOp::Add: overflow = __builtin_add_overflow(p, q, &r); break;
+    case ir::BinaryOp::Sub: overflow = __builtin_sub_overflow(p, q, &r); break;
+    case ir::BinaryOp::Mul: overflow = __builtin_mul_overflow(p, q, &r); break;
+    case ir::BinaryOp::FloorDiv:
+      if (q == -1 && p == std::numeric_limits<std::int64_t>::min()) {
+        overflow = true;
+      } else {
+        r = p / q;  // q != 0: no_zero_divisor refused a literal 0
+        if ((p % q != 0) && ((p < 0) != (q < 0))) --r;
+      }
+      break;
+    default: return nullptr;
+  }
+  if (overflow)
+    fail(op_loc, "integer overflow: " + std::to_string(p) + " " + binary_op_spelling(op) + " " +
+                     std::to_string(q) + " does not fit in 64 bits",
+         "ints are 64-bit; for larger numbers write a real, as in 1e20");
+  return std::make_shared<ir::Literal>(r, loc);
 }
 
 struct Sema::CheckOperand {
   Sema& sema;
   Scope& scope;
   Expr operator()(const ast::IntLiteral& n) const {
-    return std::make_shared<ir::Literal>(Type::Int, static_cast<double>(n.value), n.loc);
+    return std::make_shared<ir::Literal>(n.value, n.loc);
   }
   Expr operator()(const ast::RealLiteral& n) const {
     return std::make_shared<ir::Literal>(Type::Real, n.value, n.loc);
@@ -198,6 +232,12 @@ struct Sema::CheckOperand {
     }
     if (a->type == Type::Bool) fail(n.loc, "'" + n.op + "' needs a number or a vec, not a bool");
     if (n.op == "+") return a;
+    if (auto lit = ir::as<ir::Literal>(a); lit && a->type == Type::Int) {
+      if (lit->integer == std::numeric_limits<std::int64_t>::min())
+        fail(n.loc, "integer overflow: -(" + std::to_string(lit->integer) +
+                        ") does not fit in 64 bits");
+      return std::make_shared<ir::Literal>(-lit->integer, n.loc);
+    }
     return std::make_shared<ir::Unary>(a->type, ir::UnaryOp::Neg, a, n.loc);
   }
   Expr operator()(const ast::Postfix& n) const {
