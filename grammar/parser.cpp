@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "grammar/rules_def.hpp"
+#include "grammar/source_checks.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -52,6 +53,7 @@ std::string habit_note(grammar::Iterator it, grammar::Iterator end) {
 }  // namespace
 
 ast::Program parse_program(const SourceFile& file) {
+  check_source_text(file);
   const std::string& text = file.text();
   const grammar::Iterator begin = text.begin();
   grammar::Iterator first = text.begin();

@@ -193,7 +193,9 @@ class Sema {
     return false;
   }
   std::set<std::string> failed_names_;  // declared with errors: later uses are follow-ons
-  std::set<std::string> failed_sets_;   // sets whose name clashed with another declaration
+  std::set<std::string> failed_sets_;
+  static constexpr int kMaxExpressionDepth = 2000;
+  int expression_depth_ = 0;  // of the expression being checked   // sets whose name clashed with another declaration
   std::map<std::string, Location> globals_;
   std::map<std::string, Name> names_;
   std::map<std::string, StatementRef> statement_names_;

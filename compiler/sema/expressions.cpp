@@ -53,6 +53,18 @@ double Sema::constant_number(const Expr& e, Location at, const Scope& scope) {
 }
 
 Expr Sema::check(const ast::Chain& chain, Scope& scope) {
+  // The IR is as deep as operators chain and nest; every pass after sema
+  // recurses over it, so its depth is bounded here (a 10 MB sum would not be).
+  struct Nesting {
+    int& depth;
+    const int added;
+    ~Nesting() { depth -= added; }
+  } nesting{expression_depth_, 1 + static_cast<int>(chain.rest.size())};
+  expression_depth_ += nesting.added;
+  if (expression_depth_ > kMaxExpressionDepth)
+    fail(chain.loc, "expression too deep: more than " + std::to_string(kMaxExpressionDepth) +
+                        " operators, calls and parentheses nested or in a row",
+         "split it with intermediate variables or functions");
   Expr lhs = check(chain.first, scope);
   std::optional<ir::BinaryOp> previous_comparison;
   for (const ast::BinaryOp& step : chain.rest) {

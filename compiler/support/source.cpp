@@ -9,6 +9,8 @@ namespace partc {
 
 SourceFile::SourceFile(std::string path, std::string text)
     : path_(std::move(path)), text_(std::move(text)) {
+  // A UTF-8 byte order mark (editors on Windows write one) is not text.
+  if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) text_.erase(0, 3);
   line_starts_.push_back(0);
   for (std::uint32_t k = 0; k < text_.size(); ++k)
     if (text_[k] == '\n') line_starts_.push_back(k + 1);
