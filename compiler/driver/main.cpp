@@ -4,7 +4,8 @@
 //
 // Exit status: 0 success, 1 the model has errors, 2 bad command line,
 // 3 an I/O failure or a partc bug. Output files are written whole or not at
-// all: the text goes to a temporary file renamed into place at the end.
+// all: the text goes to a temporary file renamed into place at the end (a
+// link, pipe or device is written in place); the input is never the output.
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +19,7 @@
 #include "driver/pipeline.hpp"
 #include "grammar/parser.hpp"
 #include "ir/printer.hpp"
+#include "partc/output_file.hpp"
 #include "support/diagnostics.hpp"
 
 namespace {
@@ -71,32 +73,25 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (o.input.empty()) throw UsageError{"no input file"};
+  // Through links too: -o m.part, or a link to it, would replace the model.
+  std::error_code ignored;
+  if (o.output && *o.output != "-" && std::filesystem::equivalent(o.input, *o.output, ignored))
+    throw UsageError{"the output '" + *o.output + "' is the input file"};
   return o;
 }
 
-// Writes the whole text or nothing.
+// Writes the whole text or nothing (a regular file through a temporary; a
+// link, pipe or device in place: runtime/partc/output_file.hpp).
 void write_output(const std::optional<std::string>& path, const std::string& text) {
   if (!path || *path == "-") {
     std::cout << text;
     return;
   }
-  const std::string temporary = *path + ".partc-tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      const std::string why = std::strerror(errno);
-      std::remove(temporary.c_str());
-      throw std::runtime_error("cannot write '" + *path + "': " + why);
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, *path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write '" + *path + "': " + error.message());
-  }
+  const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw std::runtime_error("cannot write '" + *path + "': folder '" + folder.string() +
+                             "' does not exist");
+  partc::detail::write_file_atomically(*path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace
