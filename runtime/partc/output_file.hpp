@@ -15,9 +15,17 @@
 // - Errors are std::runtime_error naming the file and the system's reason; a
 //   writer that throws half way removes the temporary, and its exception
 //   propagates unchanged.
+// - SIGINT or SIGTERM while a temporary is being written removes it, then
+//   ends the program as the signal would have. This is the one piece of
+//   global state here (a signal handler can reach nothing else); a handler
+//   the program installed itself is left alone.
 #pragma once
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -29,6 +37,28 @@
 namespace partc {
 
 namespace detail {
+
+// The temporary being written, for the signal handler.
+inline std::atomic<const char*>& pending_temporary() {
+  static std::atomic<const char*> pending{nullptr};
+  return pending;
+}
+
+extern "C" inline void remove_pending_temporary(int signal) {
+  if (const char* path = pending_temporary().load()) ::unlink(path);  // async-signal-safe
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+// Installs remove_pending_temporary where the default action would end the
+// program (two system calls per file written: nothing beside the writing).
+inline void guard_temporaries_against_signals() {
+  for (int s : {SIGINT, SIGTERM}) {
+    struct sigaction old {};
+    if (sigaction(s, nullptr, &old) == 0 && old.sa_handler == SIG_DFL)
+      std::signal(s, remove_pending_temporary);
+  }
+}
 
 template <class Write>
 void write_file_atomically(const std::string& path, Write&& write) {
@@ -43,6 +73,11 @@ void write_file_atomically(const std::string& path, Write&& write) {
     return;
   }
   const std::string temporary = path + ".tmp";
+  guard_temporaries_against_signals();
+  struct Pending {  // cleared however the write ends
+    explicit Pending(const std::string& p) { pending_temporary().store(p.c_str()); }
+    ~Pending() { pending_temporary().store(nullptr); }
+  } pending(temporary);
   try {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out)

@@ -1,9 +1,12 @@
 // csv.hpp, vtk.hpp and finite.hpp: every complaint about a bad file is checked
 // word for word (location, line, caret), written files are read back, and the
 // VTK output is parsed as XML.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
 #include <unistd.h>
 
-#include <catch2/catch.hpp>
+#include <csignal>
 
 #include "sample_set.hpp"
 #include <cctype>
@@ -284,6 +287,28 @@ TEST_CASE("a writer that fails half way leaves the previous file as it was", "[c
   CHECK_THROWS_WITH(partc::detail::write_file_atomically(path, fail_half_way), "disk on fire");
   CHECK(read_file(path) == "id,p_0\n0,1\n");
   CHECK_FALSE(fs::exists(path + ".tmp"));
+}
+
+TEST_CASE("a signal while a temporary is written removes it and ends the program", "[csv]") {
+  const std::string path = write_file("signalled.csv", "id,p_0\n0,1\n");
+  for (int signal : {SIGINT, SIGTERM}) {
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {  // the child is stopped by the signal half way through writing
+      std::signal(signal, SIG_DFL);  // Catch's own handler, inherited, would report instead
+      partc::detail::write_file_atomically(path, [&](std::ostream& out) {
+        out << "id,p_0\n" << std::flush;
+        std::raise(signal);
+      });
+      _exit(0);  // not reached
+    }
+    int status = 0;
+    REQUIRE(waitpid(child, &status, 0) == child);
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == signal);
+    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK(read_file(path) == "id,p_0\n0,1\n");
+  }
 }
 
 TEST_CASE("check_finite reports the first NaN or Inf with variable, id and step", "[finite]") {
