@@ -11,8 +11,10 @@
 // - Every argument is checked before any work, including the parameter
 //   values (through the model's set_param) and that output directories exist:
 //   a typo costs a second, not a run.
-// - With --check-every M > 0 the final state is always checked too, so
-//   --output never holds a NaN; on a blow-up no output file is written (VTK
+// - With --check-every M > 0 the final state is always checked too, and so
+//   is every state written as a VTK frame (no frame holds a NaN); a NaN found
+//   more than a step after the last clean check says since when it may be
+//   there. --output never holds a NaN; on a blow-up no output file is written (VTK
 //   frames of earlier steps stay: they are complete and help to find the cause).
 // - The model's sets are discovered through for_each_set on a freshly
 //   constructed model, before init or load: generated models hold their sets
@@ -384,12 +386,31 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
                 options.log_every.value_or(model.log_every()), options.log);
 
   // Step 0 (the state after init or load) is checked and written like any other.
+  // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
+  std::int64_t clean = -1;  // the last step found finite
+  const auto check = [&](std::int64_t step) {
+    try {
+      model.check_finite();
+    } catch (const NumericalError& e) {
+      if (clean < 0 || step - clean <= 1) throw;
+      throw NumericalError(std::string(e.what()) + " (checked every " +
+                           std::to_string(options.check_every) + " steps: it arose after step " +
+                           std::to_string(clean) + ", the last found finite; --check-every 1 " +
+                           "finds the step)");
+    }
+    clean = step;
+  };
   for (std::int64_t k = 0; k <= options.steps; ++k) {
     if (k > 0) model.step();
     const std::int64_t step = model.step_count();
-    checked = due(step, options.check_every);
-    if (checked) model.check_finite();
+    bool frame = false;
+    model.for_each_set([&](const char* name, const auto&) {
+      if (series.count(name) && due(step, options.every.value_or(frames.at(name).every)))
+        frame = true;
+    });
+    checked = due(step, options.check_every) || (frame && options.check_every > 0);
+    if (checked) check(step);
     if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
     double time = static_cast<double>(step);
     if constexpr (has_time<Model>::value) time = model.time();
@@ -401,7 +422,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
         s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
     });
   }
-  if (options.check_every > 0 && !checked) model.check_finite();
+  if (options.check_every > 0 && !checked) check(model.step_count());
   if (log) log->close();
 
   if (!options.output.empty())
