@@ -167,23 +167,38 @@ struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<double>> rows;
   std::vector<std::size_t> lines;  // 1-based file line of each row; the header is line 1
+  // The text of every line, kept only when the file cannot be read again (a
+  // pipe, /dev/stdin), for error_at.
+  std::vector<std::string> texts;
 
   int column(const std::string& name) const {
-    const auto found = std::find(header.begin(), header.end(), name);
-    return found == header.end() ? -1 : static_cast<int>(found - header.begin());
+    if (index_.size() != header.size()) {
+      index_.clear();
+      for (std::size_t c = 0; c < header.size(); ++c) index_.emplace(header[c], static_cast<int>(c));
+    }
+    const auto found = index_.find(name);
+    return found == index_.end() ? -1 : found->second;
   }
 
   // An error pointing at field `field` of file line `line` (a field index past
   // the last points just after the line's end, for "missing ..."). The line is
-  // read again from the file: a table does not keep its text, errors are rare.
+  // read again from a regular file: a table does not keep its text, errors
+  // are rare.
   InputError error_at(std::size_t line, std::size_t field, const std::string& message) const {
-    detail::CsvLineReader reader(path);
     std::string text;
-    while (reader.number() < line && reader.next(text)) continue;
+    if (!texts.empty()) {
+      if (line >= 1 && line <= texts.size()) text = texts[line - 1];
+    } else {
+      detail::CsvLineReader reader(path);
+      while (reader.number() < line && reader.next(text)) continue;
+    }
     const auto fields = detail::split_csv_line(text);
     const std::size_t column = field < fields.size() ? fields[field].offset + 1 : text.size() + 1;
     return InputError(path, line, column, text, message);
   }
+
+ private:
+  mutable std::unordered_map<std::string, int> index_;  // header name -> column, built on use
 };
 
 inline CsvTable read_csv(const std::string& path) {
@@ -195,26 +210,32 @@ inline CsvTable read_csv(const std::string& path) {
   if (!reader.next(line) || detail::is_blank(line))
     throw InputError(path, 1, 1, line,
                      "expected a header line naming the columns, such as 'id,p_0,p_1'");
+  const bool rereadable = std::filesystem::is_regular_file(path);
+  if (!rereadable) table.texts.push_back(line);
   const auto names = detail::split_csv_line(line);
-  std::size_t numbers = 0;
-  for (const auto& name : names) {
-    if (name.text.empty()) throw InputError(path, 1, name.offset + 1, line, "empty column name");
-    const int previous = table.column(std::string(name.text));
-    if (previous >= 0)
-      throw InputError(path, 1, name.offset + 1, line,
-                       "duplicate column name '" + std::string(name.text) + "' (also column " +
-                           std::to_string(previous + 1) + ")");
-    table.header.emplace_back(name.text);
+  // A first line of numbers is data without its header, whatever else is wrong with it.
+  const bool all_numbers = std::all_of(names.begin(), names.end(), [](const detail::CsvField& f) {
     double ignored;
-    numbers += detail::parse_csv_number(name.text, ignored).empty();
-  }
-  if (numbers == names.size())
+    return detail::parse_csv_number(f.text, ignored).empty();
+  });
+  if (all_numbers)
     throw InputError(path, 1, 1, line,
                      "the first line must name the columns, but it holds numbers; is the "
                      "header line missing?");
+  std::unordered_map<std::string_view, std::size_t> seen;  // a linear check: 100000 columns
+  for (const auto& name : names) {
+    if (name.text.empty()) throw InputError(path, 1, name.offset + 1, line, "empty column name");
+    const auto [previous, fresh] = seen.emplace(name.text, seen.size());
+    if (!fresh)
+      throw InputError(path, 1, name.offset + 1, line,
+                       "duplicate column name '" + std::string(name.text) + "' (also column " +
+                           std::to_string(previous->second + 1) + ")");
+    table.header.emplace_back(name.text);
+  }
 
   std::size_t first_blank = 0;  // blank lines are fine only at the end
   while (reader.next(line)) {
+    if (!rereadable) table.texts.push_back(line);
     if (detail::is_blank(line)) {
       if (first_blank == 0) first_blank = reader.number();
       continue;
@@ -296,7 +317,8 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
   const int id_column = table.column("id");
   if (id_column >= 0) {
     const auto c = static_cast<std::size_t>(id_column);
-    check_integers(c, 0, largest_exact_integer, "non-negative integer ids");
+    // Below 2^53: a larger id may already have been rounded to a neighbour on reading.
+    check_integers(c, 0, largest_exact_integer - 1, "non-negative integer ids below 2^53");
     std::unordered_map<std::int64_t, std::size_t> row_of_id;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
       const auto id = static_cast<std::int64_t>(table.rows[r][c]);
