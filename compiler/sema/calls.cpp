@@ -55,7 +55,7 @@ Expr Sema::check_call(const ast::Call& n, Scope& scope) {
   const bool binding = !n.args.empty() && boost::get<ast::LabelBinding>(&n.args.front());
   const auto reduction = kReductions.find(name);
   if (reduction != kReductions.end() &&
-      (name == "sum" || name == "count" || binding || n.args.size() == 3))
+      (name == "sum" || name == "count" || binding || n.args.size() >= 3))
     return check_accumulation(n, reduction->second, scope);
   if (binding)
     fail(ast::location_of(n.args.front()),
@@ -204,15 +204,41 @@ Expr Sema::check_random(const ast::Call& n, Scope& scope) {
                                       n.loc);
 }
 
+// min(j, cond, e, none): `none` where no particle satisfies cond, instead of
+// +-inf (which the finite check would take for a blow-up). The count and the
+// min run over the same particles (a condition cannot draw random numbers);
+// codegen fuses their loops.
+Expr Sema::check_extremum_or_none(const ast::Call& n, ir::Reduction reduction, Scope& scope) {
+  const std::string& name = n.callee.name;
+  ast::Call reduced = n, counted = n;
+  reduced.args.pop_back();
+  counted.callee.name = "count";
+  counted.args.resize(2);
+  const Expr value = check_accumulation(reduced, reduction, scope);
+  const Expr found = check_accumulation(counted, ir::Reduction::Count, scope);
+  Expr none = check(argument_chain(n.args.back(), name), scope);
+  none = convert(none, value->type, none->loc, "the value of " + name + " over no particles");
+  const Expr any = std::make_shared<ir::Binary>(
+      Type::Bool, ir::BinaryOp::Gt, found, std::make_shared<ir::Literal>(std::int64_t{0}, n.loc),
+      n.loc);
+  return std::make_shared<ir::Select>(value->type, any, value, none, n.loc);
+}
+
 Expr Sema::check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope& scope) {
   const std::string& name = n.callee.name;
+  if ((reduction == ir::Reduction::Min || reduction == ir::Reduction::Max) && n.args.size() == 4)
+    return check_extremum_or_none(n, reduction, scope);
   const std::size_t expected_min = reduction == ir::Reduction::Count ? 1 : 2;
   const std::size_t expected_max = reduction == ir::Reduction::Count ? 2 : 3;
   if (n.args.size() < expected_min || n.args.size() > expected_max)
     fail(n.loc, reduction == ir::Reduction::Count
                     ? "count takes a label and an optional condition: count(j, condition)"
                     : name + " takes a label, an optional condition and a value: " + name +
-                          "(j, condition, value)");
+                          "(j, condition, value)" +
+                          (reduction == ir::Reduction::Sum
+                               ? std::string()
+                               : ", and a value for no particles: " + name +
+                                     "(j, condition, value, none)"));
   if (scope.where != Scope::Where::Statement)
     fail(n.loc, "an accumulation over particles cannot appear in " + scope.context);
   if (scope.in_accumulation)

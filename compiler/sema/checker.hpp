@@ -168,6 +168,7 @@ class Sema {
   Type call_type(ir::Function fn, const std::string& name, const std::vector<Expr>& args);
   Expr check_random(const ast::Call& n, Scope& scope);
   Expr check_accumulation(const ast::Call& n, ir::Reduction reduction, Scope& scope);
+  Expr check_extremum_or_none(const ast::Call& n, ir::Reduction reduction, Scope& scope);
   Expr check_accumulation_over(const ast::Call& n, ir::Reduction reduction, int label_index,
                                Scope& inner);
   static const ast::Chain& argument_chain(const ast::Argument& a, const std::string& name);

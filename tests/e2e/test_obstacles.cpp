@@ -18,12 +18,14 @@ struct Reference {
   std::vector<Vec2> b, o;  // positions of B and O, by id
   std::vector<double> strength;
   std::vector<Vec2> push;
-  std::vector<double> crowd, gap;
+  std::vector<double> crowd, gap, lonely;
 
   void step(double r) {
     push.assign(b.size(), Vec2{0, 0});
     crowd.assign(b.size(), 0);
     gap.assign(b.size(), std::numeric_limits<double>::infinity());
+    lonely.assign(b.size(), -1);  // max over no obstacle: the value given for none
+    std::vector<bool> any(b.size(), false);
     // Over both sets: B's strength is 2 (its declared initial value).
     const auto both = [&](std::size_t i, const Vec2& q, double s) {
       const double d = reference::norm(reference::minimum_image({q[0] - b[i][0], q[1] - b[i][1]}));
@@ -36,6 +38,10 @@ struct Reference {
         const double d = reference::norm(dx);
         if (d < r && d > 0)
           for (int c = 0; c < 2; ++c) push[i][c] += -strength[k] * dx[c] / d;
+        if (d < 0.2 * r) {
+          lonely[i] = any[i] ? std::max(lonely[i], strength[k]) : strength[k];
+          any[i] = true;
+        }
         both(i, o[k], strength[k]);
       }
       for (std::size_t k = 0; k < b.size(); ++k) both(i, b[k], 2.0);
@@ -55,7 +61,7 @@ TEST_CASE("sums over another particle set match brute force over all pairs", "[e
   model.set_seed(3);
   model.init();
   Reference ref{reference::positions_by_id(model.B()), reference::positions_by_id(model.O()),
-                reference::values_by_id<Obstacles::O_strength>(model.O()), {}, {}, {}};
+                reference::values_by_id<Obstacles::O_strength>(model.O()), {}, {}, {}, {}};
   for (int step = 0; step < 4; ++step) {
     model.step();
     ref.step(model.params().r);
@@ -64,6 +70,7 @@ TEST_CASE("sums over another particle set match brute force over all pairs", "[e
   const auto push = reference::values_by_id<Obstacles::B_push>(model.B());
   const auto crowd = reference::values_by_id<Obstacles::B_crowd>(model.B());
   const auto gap = reference::values_by_id<Obstacles::B_gap>(model.B());
+  const auto lonely = reference::values_by_id<Obstacles::B_lonely>(model.B());
   double worst_b = 0, worst_push = 0, scale = 0, worst_crowd = 0, worst_gap = 0;
   for (std::size_t i = 0; i < b.size(); ++i) {
     worst_b = std::max(worst_b, reference::norm(reference::minimum_image(
@@ -79,6 +86,10 @@ TEST_CASE("sums over another particle set match brute force over all pairs", "[e
   CHECK(worst_push <= 1e-12 * scale);
   CHECK(worst_crowd <= 1e-12);
   CHECK(worst_gap <= 1e-15);
+  CHECK(lonely == ref.lonely);
+  const auto none = std::count(ref.lonely.begin(), ref.lonely.end(), -1.0);
+  CHECK(none > 0);  // both cases occur
+  CHECK(none < static_cast<long>(ref.lonely.size()));
   REQUIRE(std::isfinite(*std::max_element(ref.gap.begin(), ref.gap.end())));
   // O never moves: the statements update B only.
   CHECK(reference::positions_by_id(model.O()) == ref.o);
