@@ -160,6 +160,18 @@ std::vector<std::string> csv_columns_of(const Set& set) {
   return columns;
 }
 
+// The set's indices in increasing id order: files are keyed by id whatever
+// order the set keeps its particles in, and a loaded set is stored so.
+template <class Set>
+std::vector<std::size_t> id_order(const Set& set) {
+  std::vector<std::size_t> order(set.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto& ids = set.ids();
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+  return order;
+}
+
 }  // namespace detail
 
 struct CsvTable {
@@ -264,7 +276,8 @@ inline CsvTable read_csv(const std::string& path) {
   return table;
 }
 
-// Replaces the particles of `set` with the rows of `table`, in row order.
+// Replaces the particles of `set` with the rows of `table`, stored in id order
+// whatever the order of the rows.
 // Columns: p_0 .. p_{D-1} are required; id is optional (absent: ids 0, 1, ...
 // in row order); any other variable is optional, a Vec all or none of its
 // columns. `initialise(i)` runs for each new particle i before the table's
@@ -352,27 +365,15 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
       }
     }
   });
+  // Kept in id order, as init creates them: the order of the rows must not
+  // change a result (sums within a cell run in storage order).
+  set.permute(detail::id_order(set));
 }
 
 template <class Set>
 void load_set(const CsvTable& table, Set& set) {
   load_set(table, set, [](std::size_t) {});
 }
-
-namespace detail {
-
-// Files are keyed by id, whatever order the set keeps its particles in.
-template <class Set>
-std::vector<std::size_t> id_order(const Set& set) {
-  std::vector<std::size_t> order(set.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto& ids = set.ids();
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
-  return order;
-}
-
-}  // namespace detail
 
 template <class Set>
 void write_csv(const std::string& path, const Set& set) {
