@@ -245,6 +245,11 @@ PairSymmetryFact judge(const ir::Model& model, const ir::Statement& st, const ir
                   " is not a sum: only sums and counts add a pair's term to both particles";
     return fact;
   }
+  if (st.schedule.compensated) {
+    fact.reason = "the schedule asks for compensated summation, which each particle does over "
+                  "its own terms, in order";
+    return fact;
+  }
   if (j.set != i.set) {
     fact.reason = fmt::format("{} ranges over {}, not {}: only {} takes the term", j.name,
                               model.sets[j.set].name, model.sets[i.set].name, i.name);

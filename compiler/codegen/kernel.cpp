@@ -135,9 +135,12 @@ void ModelEmitter::kernel(const Kernel& k) {
   names.home_set = home;
   for (const Label& l : st.labels) names.labels.push_back(cpp_name(l.name));
   names.array = array_name;
-  for (const Accumulate* acc : uses.accumulations)
+  for (const Accumulate* acc : uses.accumulations) {
     names.accumulators[acc->id] =
         locals.fresh(std::string(reduction_name(acc->reduction)) + "_" + names.labels[acc->label]);
+    if (st.schedule.compensated && acc->reduction == Reduction::Sum)
+      compensation_[acc->id] = locals.fresh(names.accumulators[acc->id] + "_error");
+  }
   const std::string count = locals.fresh("n");
   // A fused loop has one index: every label it serves is named after the first.
   const std::vector<Loop> loops = fuse_loops(uses.accumulations, st);
@@ -335,6 +338,7 @@ std::string ModelEmitter::radius_expression(const SearchFact& fact, const Statem
 }
 
 bool ModelEmitter::newton_pairs(const Statement& st) const {
+  if (st.schedule.compensated) return false;  // each particle sums its own terms, in order
   StatementUses uses;
   uses.visit(st.value);
   bool any = false;
@@ -394,11 +398,16 @@ std::string ModelEmitter::identity(const Accumulate& acc) const {
   internal_error("identity: unknown reduction");
 }
 
-std::string ModelEmitter::update(const Accumulate& acc, const ExpressionNames& names) const {
+std::string ModelEmitter::update(const Accumulate& acc, const ExpressionNames& names,
+                                 bool compensated) const {
   const std::string& name = names.accumulators.at(acc.id);
   std::string step;
   switch (acc.reduction) {
-    case Reduction::Sum: step = name + " += " + expression(acc.body, names) + ";"; break;
+    case Reduction::Sum:
+      step = compensated ? fmt::format("partc::neumaier_add({}, {}, {});", name,
+                                       compensation_.at(acc.id), expression(acc.body, names))
+                         : name + " += " + expression(acc.body, names) + ";";
+      break;
     case Reduction::Count: step = "++" + name + ";"; break;
     case Reduction::Min:
     case Reduction::Max:
@@ -427,8 +436,14 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
                         const std::string& pairs_once) {
   UsesDx dx;
   bool reads_j = false;
+  // Neumaier's summation keeps each sum's lost low-order part beside it.
+  const auto compensated = [&](const Accumulate& acc) {
+    return st.schedule.compensated && acc.reduction == Reduction::Sum;
+  };
   for (const Accumulate* acc : l.members) {
     linef("{} {} = {};", accumulator_type(*acc), names.accumulators.at(acc->id), identity(*acc));
+    if (compensated(*acc))
+      linef("{} {} = {};", accumulator_type(*acc), compensation_.at(acc->id), identity(*acc));
     dx.visit(acc->condition);
     dx.visit(acc->body);
     ReadsLabel reads(acc->label);
@@ -440,7 +455,7 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
   inner.dx_norm = dx.norm ? "dx_norm" : "";
   std::string body;
   if (dx.norm) body += "const double dx_norm = partc::norm(dx);\n";
-  for (const Accumulate* acc : l.members) body += update(*acc, inner) + "\n";
+  for (const Accumulate* acc : l.members) body += update(*acc, inner, compensated(*acc)) + "\n";
 
   const std::string j = names.labels[l.members.front()->label];
   const std::string i = names.labels[0];
@@ -470,6 +485,9 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
     out_ += body;
     line("}");
   }
+  for (const Accumulate* acc : l.members)
+    if (compensated(*acc))
+      linef("{} += {};", names.accumulators.at(acc->id), compensation_.at(acc->id));
 }
 
 // The sums of a loop over pairs (walk: half lists' or a search's

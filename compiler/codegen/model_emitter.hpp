@@ -189,7 +189,7 @@ class ModelEmitter {
   std::vector<Loop> fuse_loops(const std::vector<const Accumulate*>& accumulations,
                                const Statement& st) const;
   std::string identity(const Accumulate& acc) const;
-  std::string update(const Accumulate& acc, const ExpressionNames& names) const;
+  std::string update(const Accumulate& acc, const ExpressionNames& names, bool compensated) const;
   bool always_true(const Accumulate& acc) const;
   std::string accumulator_type(const Accumulate& acc) const;
   void loop(const Loop& l, const Statement& st, const ExpressionNames& names,
@@ -216,6 +216,7 @@ class ModelEmitter {
   NameTable members_;
   std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
   std::vector<std::string> left_;  // per set, with open faces: how many left
+  std::map<int, std::string> compensation_;  // accumulation id -> its Neumaier error's local
   std::map<SearchKey, std::string> searches_;
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve

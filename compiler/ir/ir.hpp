@@ -323,6 +323,9 @@ struct Schedule {
   SolverChoice solver = SolverChoice::Auto;
   Expr tolerance;       // of an iterative solver; null: 1e-10
   Expr max_iterations;  // of an iterative solver; null: 2n
+  // summation = compensated: every sum of the statement adds with Neumaier's
+  // compensation, each particle its own terms in order (no pair walks).
+  bool compensated = false;
   Location loc;
 };
 

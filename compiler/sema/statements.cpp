@@ -349,6 +349,13 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       if (auto value = evaluate_constant(skin, model_); value && !(*value >= 0))
         fail(option.value.loc, "the skin must not be negative");
       st.schedule.skin = skin;
+    } else if (option.key.name == "summation") {
+      const ast::Operand* sole = ast::sole_operand(option.value);
+      const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+      if (!id || (id->name != "plain" && id->name != "compensated"))
+        fail(option.value.loc, "summation is plain or compensated",
+             "compensated: Neumaier's summation, for terms of wildly different sizes");
+      st.schedule.compensated = id->name == "compensated";
     } else if (option.key.name == "solver" || option.key.name == "tol" ||
                option.key.name == "max_iterations") {
       if (!st.solve_operator)
@@ -369,9 +376,11 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
     } else {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
-               suggestion(option.key.name, {"search", "skin", "solver", "tol", "max_iterations"}),
-           "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH; for a "
-           "solve: solver = auto | lu | cg | bicgstab | gmres, tol = 1e-10, max_iterations = K");
+               suggestion(option.key.name,
+                          {"search", "skin", "summation", "solver", "tol", "max_iterations"}),
+           "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH; "
+           "summation = plain | compensated; for a solve: solver = auto | lu | cg | bicgstab | "
+           "gmres, tol = 1e-10, max_iterations = K");
     }
   }
 }

@@ -7,6 +7,11 @@
 //   remainder has the divisor's sign, so mod(-1, 3) is 2 (C++'s % gives -1),
 //   which is what periodic indexing wants.
 // - sign(x) is -1, 0 or 1 in x's type; clamp<T>(x, lo, hi) is min(max(x, lo), hi).
+// - neumaier_add(sum, error, x) adds x to sum and keeps what rounding lost in
+//   error (Neumaier's improvement of Kahan's summation): sum + error at the
+//   end is the sum as if in twice the precision, whatever the order of sizes
+//   (schedule: summation = compensated). Not with -ffast-math, which would
+//   simplify the error away.
 //
 // Surprises:
 // - ipow may differ from std::pow in the last bits (a few roundings instead of one).
@@ -19,6 +24,8 @@
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
+
+#include "partc/vec.hpp"
 
 namespace partc {
 
@@ -68,6 +75,17 @@ constexpr T sign(T x) {
 template <class T>
 constexpr T clamp(T x, T lo, T hi) {
   return x < lo ? lo : x > hi ? hi : x;
+}
+
+inline void neumaier_add(double& sum, double& error, double x) {
+  const double t = sum + x;
+  error += std::abs(sum) >= std::abs(x) ? (sum - t) + x : (x - t) + sum;
+  sum = t;
+}
+
+template <int D>
+void neumaier_add(Vec<D>& sum, Vec<D>& error, const Vec<D>& x) {
+  for (int k = 0; k < D; ++k) neumaier_add(sum[k], error[k], x[k]);
 }
 
 }  // namespace partc
