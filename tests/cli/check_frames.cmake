@@ -2,14 +2,7 @@
 # of F alone, every 100 steps unless --every says otherwise, holding id, the
 # points and those variables only, in the order the set declares them.
 # Usage: cmake -DPROGRAM=... -DDIR=... -P check_frames.cmake
-file(REMOVE_RECURSE ${DIR})
-file(MAKE_DIRECTORY ${DIR})
-function(run)
-  execute_process(COMMAND ${PROGRAM} --quiet ${ARGN} RESULT_VARIABLE status)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "${PROGRAM} ${ARGN} exited with ${status}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/program_run.cmake)
 function(expect_files prefix)
   file(GLOB found RELATIVE ${DIR} ${DIR}/${prefix}*)
   list(SORT found)

@@ -2,14 +2,7 @@
 # from its initial state, and from the same rows reversed, ends bitwise equal
 # (sums within a cell run in storage order, which loading makes id order).
 # Usage: cmake -DPROGRAM=md -DDIR=... -P check_input_order.cmake
-file(REMOVE_RECURSE ${DIR})
-file(MAKE_DIRECTORY ${DIR})
-function(run)
-  execute_process(COMMAND ${PROGRAM} --quiet ${ARGN} RESULT_VARIABLE status)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "${PROGRAM} ${ARGN} exited with ${status}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/program_run.cmake)
 run(--set N=2000 --steps 0 --seed 3 --output ${DIR}/start.csv)
 file(STRINGS ${DIR}/start.csv lines)
 list(POP_FRONT lines header)
