@@ -1,5 +1,6 @@
-// Helpers for the stability cases: a set's state as plain arrays in id order,
-// and the periodic minimum image written out independently of the runtime's.
+// Helpers for the stability cases: tests/e2e/reference.hpp's, for any
+// dimension: a set's state as plain arrays in id order, and the periodic
+// minimum image written out independently of the runtime's.
 #pragma once
 
 #include <algorithm>
@@ -8,6 +9,8 @@
 #include <cstdint>
 #include <numeric>
 #include <vector>
+
+#include "reference.hpp"
 
 namespace brute {
 
@@ -28,14 +31,8 @@ double norm(const std::array<double, D>& d) {
   return std::sqrt(s);
 }
 
-template <class Set>
-std::vector<std::size_t> by_id(const Set& set) {
-  std::vector<std::size_t> order(set.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return set.ids()[a] < set.ids()[b]; });
-  return order;
-}
+using reference::by_id;  // tests/e2e/reference.hpp
+using reference::values_by_id;
 
 template <int D, class Set>
 std::vector<Vec<D>> positions_by_id(const Set& set) {
@@ -45,13 +42,6 @@ std::vector<Vec<D>> positions_by_id(const Set& set) {
     for (int k = 0; k < D; ++k) p[k] = set.positions()[i][k];
     out.push_back(p);
   }
-  return out;
-}
-
-template <class Var, class Set>
-auto values_by_id(const Set& set) {
-  std::vector<typename std::decay_t<decltype(set.template get<Var>())>::value_type> out;
-  for (std::size_t i : by_id(set)) out.push_back(set.template get<Var>()[i]);
   return out;
 }
 

@@ -29,7 +29,7 @@ struct Reference {
   int near_cutoff = 0;  // pairs within 3e-8 of rc: their inclusion is up to the rounding
 };
 
-Reference reference(const std::vector<LV>& off, long double rc) {
+Reference long_double_reference(const std::vector<LV>& off, long double rc) {
   Reference r{std::vector<long double>(off.size(), 0),
               std::vector<long double>(off.size(), std::numeric_limits<long double>::infinity()),
               std::vector<int>(off.size(), 0)};
@@ -90,7 +90,7 @@ TEST_CASE("in a unit box at 1e8, distances and a sum of exp(-|dx|/rc) lose only 
   const auto close = brute::values_by_id<Far::P_close>(model.P());
 
   SECTION("against the model's own positions: double rounding only") {
-    const Reference r = reference(actual, rc);
+    const Reference r = long_double_reference(actual, rc);
     REQUIRE(r.near_cutoff == 0);
     double worst_s = 0, worst_d = 0;
     for (int i = 0; i < N; ++i) {
@@ -106,7 +106,7 @@ TEST_CASE("in a unit box at 1e8, distances and a sum of exp(-|dx|/rc) lose only 
     CHECK(worst_d <= 1e-15);
   }
   SECTION("against the offsets as written: the placement's rounding, no more") {
-    const Reference r = reference(written, rc);
+    const Reference r = long_double_reference(written, rc);
     REQUIRE(r.near_cutoff == 0);
     const double dmax = std::sqrt(2.0) * std::ldexp(1.0, -26);
     double worst_s = 0, worst_d = 0;
