@@ -130,6 +130,11 @@ Figures measure(Model& model, const std::string& unknown, const std::string& mat
 
 }  // namespace
 
+template <class T>
+struct Type {
+  using type = T;
+};
+
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : "";
   std::FILE* figures_file = nullptr;
@@ -162,26 +167,24 @@ int main(int argc, char** argv) {
     return dir.empty() ? "" : prefix + example + "_n" + std::to_string(n);
   };
   partc::with_threads(1, [&] {
-    for (const int n : sides) {
-      const double eps = eps_times_h * (n - 1);
-      RbfFranke model;
-      model.set_param("n", std::to_string(n));
-      model.set_param("eps", std::to_string(eps));
-      model.set_param("m", "2");
-      row("rbf_franke", "w", n, eps,
-          measure<RbfFranke, RbfSolveStatement, RbfSolveResult>(model, "w",
-                                                                files("rbf_franke", n)));
-    }
-    for (const int n : sides) {
-      const double eps = eps_times_h * (n - 1);
-      KansaPoisson model;
-      model.set_param("n", std::to_string(n));
-      model.set_param("eps", std::to_string(eps));
-      model.set_param("m", "2");
-      row("kansa_poisson", "lambda", n, eps,
-          measure<KansaPoisson, KansaSolveStatement, KansaSolveResult>(model, "lambda",
-                                                                       files("kansa_poisson", n)));
-    }
+    // Each example at each n, its shape parameter scaled with the node spacing.
+    const auto example = [&](auto model_type, auto statement, auto result, const char* name,
+                             const char* unknown) {
+      using Model = typename decltype(model_type)::type;
+      for (const int n : sides) {
+        const double eps = eps_times_h * (n - 1);
+        Model model;
+        model.set_param("n", std::to_string(n));
+        model.set_param("eps", std::to_string(eps));
+        model.set_param("m", "2");
+        row(name, unknown, n, eps,
+            measure<Model, typename decltype(statement)::type, typename decltype(result)::type>(
+                model, unknown, files(name, n)));
+      }
+    };
+    example(Type<RbfFranke>{}, Type<RbfSolveStatement>{}, Type<RbfSolveResult>{}, "rbf_franke", "w");
+    example(Type<KansaPoisson>{}, Type<KansaSolveStatement>{}, Type<KansaSolveResult>{},
+            "kansa_poisson", "lambda");
   });
   if (figures_file) std::fclose(figures_file);
 }
