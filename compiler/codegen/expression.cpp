@@ -216,21 +216,28 @@ class Printer {
 
 }  // namespace
 
-std::string emit_literal(Type type, const Literal& lit) {
-  if (type != Type::Int || lit.type != Type::Int) return emit_literal(type, lit.value);
-  const std::int64_t v = lit.integer;
-  // Beyond 32 bits, typed as the model's ints: an LL literal beside an
-  // std::int64_t (long) would make a call's template deduction ambiguous.
+namespace {
+
+// Beyond 32 bits, typed as the model's ints: an LL literal beside an
+// std::int64_t (long) would make a call's template deduction ambiguous.
+std::string emit_int(std::int64_t v) {
   if (v == std::numeric_limits<std::int64_t>::min()) return "std::numeric_limits<std::int64_t>::min()";
   const bool small = v >= std::numeric_limits<std::int32_t>::min() + 1 &&
                      v <= std::numeric_limits<std::int32_t>::max();
   return small ? std::to_string(v) : "std::int64_t{" + std::to_string(v) + "}";
 }
 
+}  // namespace
+
+std::string emit_literal(Type type, const Literal& lit) {
+  if (type != Type::Int || lit.type != Type::Int) return emit_literal(type, lit.value);
+  return emit_int(lit.integer);
+}
+
 std::string emit_literal(Type type, double value) {
   switch (type) {
     case Type::Bool: return value != 0 ? "true" : "false";
-    case Type::Int: return emit_literal(type, Literal(static_cast<std::int64_t>(value), Location{}));
+    case Type::Int: return emit_int(static_cast<std::int64_t>(value));
     case Type::Real:
     case Type::Vec: {
       if (std::isinf(value))
