@@ -9,7 +9,16 @@
 // Surprises:
 // - Reading is strict, and every complaint is "file:line:col: error: ..." with
 //   the line and a caret: "1.5x", "nan" and "inf" are errors (check_finite
-//   would reject them at step 0 anyway, with a worse location).
+//   would reject them at step 0 anyway, with a worse location). So are a
+//   magnitude too small for a double ("1e-400" would read as 0; subnormals
+//   are read), hexadecimal floats, quoted fields, control characters (NUL, a
+//   lone "\r") and a last line without its line break, which is how a
+//   truncated file ends ("0.1" may be the start of "0.15"). CRLF, a leading
+//   '+' and spaces around fields are fine; a header without rows is 0 particles.
+// - Messages show the file's text safely: bytes that are neither printable
+//   ASCII nor valid UTF-8 as '?', a line over 160 bytes as the 100 around the
+//   column, a quoted field cut after 40 bytes. A line over 16 MiB is an error
+//   (/dev/zero or a binary file cannot fill the memory).
 // - Numbers are written in the shortest form that reads back to the same
 //   double ("0.1", not "0.10000000000000001"): a round trip is exact.
 // - Writers go through path + ".tmp" and a rename, so a failure or a crash
@@ -24,11 +33,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <ios>
 #include <numeric>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -46,10 +58,100 @@ namespace partc {
 
 namespace detail {
 
+// Text from a file as an error message shows it: printable ASCII, tabs and
+// valid UTF-8 as they are, any other byte as '?', so that a binary file
+// sends no control sequences to the terminal and a NUL cannot cut the message.
+inline std::size_t utf8_length(std::string_view text, std::size_t at) {  // 0: not valid UTF-8
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(at);
+  const std::size_t n = lead >= 0xC2 && lead <= 0xDF   ? 2
+                        : lead >= 0xE0 && lead <= 0xEF ? 3
+                        : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                       : 0;
+  if (n == 0 || at + n > text.size()) return 0;
+  for (std::size_t k = at + 1; k < at + n; ++k)
+    if ((byte(k) & 0xC0) != 0x80) return 0;
+  const unsigned char second = byte(at + 1);  // no overlong forms, surrogates or > U+10FFFF
+  if ((lead == 0xE0 && second < 0xA0) || (lead == 0xED && second > 0x9F) ||
+      (lead == 0xF0 && second < 0x90) || (lead == 0xF4 && second > 0x8F))
+    return 0;
+  return n;
+}
+
+// `text` shown; `caret` (if given) receives the spaces and tabs that put a
+// caret under byte `column_offset` of it, one per character shown.
+inline std::string shown_text(std::string_view text, std::size_t column_offset = 0,
+                              std::string* caret = nullptr) {
+  std::string shown;
+  for (std::size_t k = 0; k < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    std::size_t n = (c >= 0x20 && c < 0x7F) || c == '\t' ? 1 : utf8_length(text, k);
+    if (n == 0) {
+      shown += '?';
+      n = 1;
+    } else {
+      shown.append(text.substr(k, n));
+    }
+    if (caret && k < column_offset) *caret += c == '\t' ? '\t' : ' ';
+    k += n;
+  }
+  return shown;
+}
+
+// A field or name quoted in a message: shown, and cut after 40 bytes.
+inline std::string quoted(std::string_view text) {
+  constexpr std::size_t longest = 40;
+  if (text.size() <= longest) return "'" + shown_text(text) + "'";
+  return "'" + shown_text(text.substr(0, longest)) + "...' (" + std::to_string(text.size()) +
+         " bytes)";
+}
+
+// The InputError "path:line:column: error: message", the line and a caret
+// under the column (1-based, in bytes). A line longer than 160 bytes is shown
+// as the 100 bytes around the column, with "..." where it is cut.
+inline InputError csv_error(const std::string& path, std::size_t line, std::size_t column,
+                            std::string_view text, const std::string& message) {
+  std::size_t first = 0, last = text.size();
+  const std::size_t at = std::min(column - 1, text.size());
+  if (text.size() > 160) {
+    first = at > 60 ? at - 60 : 0;
+    last = std::min(text.size(), first + 100);
+  }
+  std::string caret = first > 0 ? "   " : "";
+  std::string shown = (first > 0 ? "..." : "") +
+                      shown_text(text.substr(first, last - first), at - first, &caret) +
+                      (last < text.size() ? "..." : "");
+  return InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                    ": error: " + message + "\n" + shown + "\n" + caret + "^");
+}
+
+// The first byte of `line` that has no place in a text file (a control
+// character other than a tab), or npos.
+inline std::size_t find_control_character(std::string_view line) {
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const unsigned char c = static_cast<unsigned char>(line[k]);
+    if ((c < 0x20 && c != '\t') || c == 0x7F) return k;
+  }
+  return std::string_view::npos;
+}
+
+inline std::string describe_control_character(char c) {
+  if (c == '\r') return "a carriage return inside a line (lines end with \"\\n\" or \"\\r\\n\")";
+  if (c == '\0') return "a NUL byte in the text; is this a CSV file?";
+  const char* hex = "0123456789ABCDEF";
+  const auto byte = static_cast<unsigned char>(c);
+  return std::string("control character 0x") + hex[byte >> 4] + hex[byte & 15] +
+         " in the text; is this a CSV file?";
+}
+
 // Lines of a text file without their "\r\n" or "\n", and without the byte
 // order mark that spreadsheet programs put in front of the first line.
+// A line is read up to max_line_length bytes: a file without line breaks
+// (binary data, /dev/zero) cannot fill the memory.
 class CsvLineReader {
  public:
+  static constexpr std::size_t max_line_length = std::size_t{16} << 20;  // 16 MiB
+
   explicit CsvLineReader(const std::string& path) : path_(path) {
     if (std::filesystem::is_directory(path))
       throw InputError(path + ": error: this is a directory, not a CSV file");
@@ -58,10 +160,25 @@ class CsvLineReader {
   }
 
   bool next(std::string& line) {
-    if (!std::getline(in_, line)) {
-      if (in_.bad()) throw InputError(path_ + ": error: read failed: " + std::strerror(errno));
-      return false;
+    line.clear();
+    ended_ = false;
+    using Traits = std::char_traits<char>;
+    std::streambuf& in = *in_.rdbuf();
+    try {  // libstdc++'s filebuf throws where the system's read fails
+      for (Traits::int_type c = in.sbumpc(); c != Traits::eof(); c = in.sbumpc()) {
+        if (c == '\n') {
+          ended_ = true;
+          break;
+        }
+        if (line.size() == max_line_length)
+          throw csv_error(path_, number_ + 1, 1, line,
+                          "a line longer than 16 MiB; is this a CSV file?");
+        line.push_back(Traits::to_char_type(c));
+      }
+    } catch (const std::ios_base::failure&) {
+      throw InputError(path_ + ": error: read failed: " + std::strerror(errno));
     }
+    if (line.empty() && !ended_) return false;
     ++number_;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (number_ == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
@@ -69,11 +186,13 @@ class CsvLineReader {
   }
 
   std::size_t number() const { return number_; }  // 1-based number of the last line read
+  bool ended() const { return ended_; }  // whether that line ended with "\n" (else: the file did)
 
  private:
   std::string path_;
   std::ifstream in_;
   std::size_t number_ = 0;
+  bool ended_ = false;
 };
 
 struct CsvField {
@@ -110,10 +229,16 @@ inline std::string parse_csv_number(std::string_view text, double& value) {
   const char* end = digits.data() + digits.size();
   const auto [stop, error] = std::from_chars(digits.data(), end, value);
   if (error == std::errc() && stop == end && std::isfinite(value)) return "";
-  const std::string quoted = "'" + std::string(text) + "'";
-  if (error == std::errc::result_out_of_range) return quoted + " is out of the range of a double";
-  if (error != std::errc() || stop != end) return "expected a number, got " + quoted;
-  return "expected a finite number, got " + quoted;
+  if (error == std::errc::result_out_of_range && stop == end) {
+    // Too small a magnitude would read as 0, changing what the number is
+    // (a divisor, a mass): refused like one too large. Subnormals are read.
+    if (std::abs(std::strtod(std::string(digits).c_str(), nullptr)) < 1)
+      return quoted(text) +
+             " is too small for a double: it would read as 0 (write 0 if that is meant)";
+    return quoted(text) + " is out of the range of a double";
+  }
+  if (error != std::errc() || stop != end) return "expected a number, got " + quoted(text);
+  return "expected a finite number, got " + quoted(text);
 }
 
 // The shortest text that reads back as the same value.
@@ -186,7 +311,8 @@ struct CsvTable {
   int column(const std::string& name) const {
     if (index_.size() != header.size()) {
       index_.clear();
-      for (std::size_t c = 0; c < header.size(); ++c) index_.emplace(header[c], static_cast<int>(c));
+      for (std::size_t c = 0; c < header.size(); ++c)
+        index_.emplace(header[c], static_cast<int>(c));
     }
     const auto found = index_.find(name);
     return found == index_.end() ? -1 : found->second;
@@ -206,7 +332,20 @@ struct CsvTable {
     }
     const auto fields = detail::split_csv_line(text);
     const std::size_t column = field < fields.size() ? fields[field].offset + 1 : text.size() + 1;
-    return InputError(path, line, column, text, message);
+    return detail::csv_error(path, line, column, text, message);
+  }
+
+  // The text of field `field` of file line `line`, as written (read again as error_at does).
+  std::string field_text(std::size_t line, std::size_t field) const {
+    std::string text;
+    if (!texts.empty()) {
+      if (line >= 1 && line <= texts.size()) text = texts[line - 1];
+    } else {
+      detail::CsvLineReader reader(path);
+      while (reader.number() < line && reader.next(text)) continue;
+    }
+    const auto fields = detail::split_csv_line(text);
+    return field < fields.size() ? std::string(fields[field].text) : std::string();
   }
 
  private:
@@ -219,9 +358,23 @@ inline CsvTable read_csv(const std::string& path) {
   detail::CsvLineReader reader(path);
   std::string line;
 
+  // What no line may hold: a control character (a binary file, or old Mac
+  // line ends "\r"), and what ends a file before its last line break.
+  const auto check_text = [&](const std::string& text) {
+    const std::size_t bad = detail::find_control_character(text);
+    if (bad != std::string::npos)
+      throw detail::csv_error(path, reader.number(), bad + 1, text,
+                              detail::describe_control_character(text[bad]));
+    if (!reader.ended() && !detail::is_blank(text))
+      throw detail::csv_error(path, reader.number(), text.size() + 1, text,
+                              "the file ends inside this line, without its line break: is it "
+                              "truncated? (a complete file ends with a line break)");
+  };
+
   if (!reader.next(line) || detail::is_blank(line))
-    throw InputError(path, 1, 1, line,
-                     "expected a header line naming the columns, such as 'id,p_0,p_1'");
+    throw detail::csv_error(path, 1, 1, line,
+                            "expected a header line naming the columns, such as 'id,p_0,p_1'");
+  check_text(line);
   const bool rereadable = std::filesystem::is_regular_file(path);
   if (!rereadable) table.texts.push_back(line);
   const auto names = detail::split_csv_line(line);
@@ -231,44 +384,46 @@ inline CsvTable read_csv(const std::string& path) {
     return detail::parse_csv_number(f.text, ignored).empty();
   });
   if (all_numbers)
-    throw InputError(path, 1, 1, line,
-                     "the first line must name the columns, but it holds numbers; is the "
-                     "header line missing?");
+    throw detail::csv_error(path, 1, 1, line,
+                            "the first line must name the columns, but it holds numbers; is the "
+                            "header line missing?");
   std::unordered_map<std::string_view, std::size_t> seen;  // a linear check: 100000 columns
   for (const auto& name : names) {
-    if (name.text.empty()) throw InputError(path, 1, name.offset + 1, line, "empty column name");
+    if (name.text.empty())
+      throw detail::csv_error(path, 1, name.offset + 1, line, "empty column name");
     const auto [previous, fresh] = seen.emplace(name.text, seen.size());
     if (!fresh)
-      throw InputError(path, 1, name.offset + 1, line,
-                       "duplicate column name '" + std::string(name.text) + "' (also column " +
-                           std::to_string(previous->second + 1) + ")");
+      throw detail::csv_error(path, 1, name.offset + 1, line,
+                              "duplicate column name " + detail::quoted(name.text) +
+                                  " (also column " + std::to_string(previous->second + 1) + ")");
     table.header.emplace_back(name.text);
   }
 
   std::size_t first_blank = 0;  // blank lines are fine only at the end
   while (reader.next(line)) {
     if (!rereadable) table.texts.push_back(line);
+    check_text(line);
     if (detail::is_blank(line)) {
       if (first_blank == 0) first_blank = reader.number();
       continue;
     }
     if (first_blank != 0)
-      throw InputError(path, first_blank, 1, "",
-                       "blank line inside the data (only trailing blank lines are allowed)");
+      throw detail::csv_error(path, first_blank, 1, "",
+                              "blank line inside the data (only trailing blank lines are allowed)");
     const auto fields = detail::split_csv_line(line);
     if (fields.size() != names.size()) {
       const std::size_t column =
           fields.size() > names.size() ? fields[names.size()].offset + 1 : line.size() + 1;
-      throw InputError(path, reader.number(), column, line,
-                       "expected " + std::to_string(names.size()) +
-                           " fields as in the header, got " + std::to_string(fields.size()));
+      throw detail::csv_error(path, reader.number(), column, line,
+                              "expected " + std::to_string(names.size()) +
+                                  " fields as in the header, got " + std::to_string(fields.size()));
     }
     std::vector<double> row(fields.size());
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const std::string problem = detail::parse_csv_number(fields[c].text, row[c]);
       if (!problem.empty())
-        throw InputError(path, reader.number(), fields[c].offset + 1, line,
-                         problem + " in column '" + table.header[c] + "'");
+        throw detail::csv_error(path, reader.number(), fields[c].offset + 1, line,
+                                problem + " in column '" + table.header[c] + "'");
     }
     table.rows.push_back(std::move(row));
     table.lines.push_back(reader.number());
@@ -290,8 +445,9 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
   const std::vector<std::string> known = detail::csv_columns_of(set);
   for (std::size_t c = 0; c < table.header.size(); ++c)
     if (std::find(known.begin(), known.end(), table.header[c]) == known.end())
-      throw table.error_at(
-          1, c, "unknown column '" + table.header[c] + "'; the columns are " + detail::join(known));
+      throw table.error_at(1, c,
+                           "unknown column " + detail::quoted(table.header[c]) +
+                               "; the columns are " + detail::join(known));
 
   constexpr double largest_exact_integer = 9007199254740992.0;  // 2^53
   const auto check_integers = [&](std::size_t c, double low, double high, const char* what) {
@@ -300,6 +456,11 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
       if (x != std::floor(x) || x < low || x > high) {
         std::string message = "column '" + table.header[c] + "' holds " + what + ", got ";
         detail::append_number(message, x);
+        if (std::abs(x) >= largest_exact_integer) {  // it may not be what was written
+          const std::string written = table.field_text(table.lines[r], c);
+          if (message.compare(message.size() - written.size(), written.size(), written) != 0)
+            message += " (the double nearest to " + detail::quoted(written) + ")";
+        }
         throw table.error_at(table.lines[r], c, message);
       }
     }
