@@ -11,16 +11,14 @@
 # frame. Then files it should read (a header without rows, CRLF, spaces, a
 # leading '+', ...) are read, and --output writes back what they hold.
 #
-# Usage: cmake -DPROGRAM=csv_input -DMD=md -DDATA=tests/cli/csv -DDIR=scratch
-#              [-DPART=rejected|accepted|special] -P check_bad_csv.cmake
+# Usage: cmake -DPROGRAM=csv_input -DMD=md -DSPH=sph_dam_break -DDATA=tests/cli/csv
+#              -DDIR=scratch -DPART=rejected|accepted|special|two_sets -P check_bad_csv.cmake
 # PROGRAM is tests/cli/csv_input.part's program (columns id, p_0 .. p_2, v_0
 # .. v_2, hits, moving; periodic along x, reflecting along y, unbounded
-# along z); MD is the md example (a cell list), for 0 particles. DATA holds
+# along z); MD is the md example (a cell list), for 0 particles; SPH the
+# sph_dam_break example, for two sets. DATA holds
 # the files CMake cannot write (NUL bytes: csv/README.md). Every failure is
 # listed at the end, not only the first.
-if(NOT PART)
-  set(PART rejected accepted special)
-endif()
 set(DIR ${DIR}/${PART})
 file(REMOVE_RECURSE ${DIR})
 file(MAKE_DIRECTORY ${DIR}/frames)
@@ -348,6 +346,40 @@ if(PART STREQUAL "special")
   if(NOT status STREQUAL "1" OR NOT now STREQUAL "${H}\n0,0.5,0.5\n" OR EXISTS ${DIR}/same.csv.tmp)
     fail(input_is_output "exit status '${status}', the file now:\n${now}${err}")
   endif()
+endif()
+
+if(PART STREQUAL "two_sets")
+  # Two sets (SPH's fluid F and walls W), the second's file truncated: the
+  # first set's output is not written either.
+  execute_process(COMMAND ${SPH} --quiet --steps 0 --output ${DIR}/state.csv RESULT_VARIABLE status)
+  file(READ ${DIR}/state_W.csv walls)
+  string(LENGTH "${walls}" length)
+  math(EXPR length "${length} - 3")
+  string(SUBSTRING "${walls}" 0 ${length} walls)
+  file(WRITE ${DIR}/truncated_W.csv "${walls}")
+  file(STRINGS ${DIR}/truncated_W.csv lines)
+  list(LENGTH lines count)
+  list(GET lines -1 last)
+  string(LENGTH "${last}" column)
+  math(EXPR column "${column} + 1")
+  foreach(set F W)
+    file(WRITE ${DIR}/out_${set}.csv "${previous}")
+  endforeach()
+  execute_process(COMMAND ${SPH} --quiet --steps 1 --input F=${DIR}/state_F.csv
+                          --input W=${DIR}/truncated_W.csv --output ${DIR}/out.csv
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 30)
+  string(REPEAT " " ${column} caret)
+  string(REGEX REPLACE " $" "^" caret "${caret}")
+  if(NOT status STREQUAL "1" OR NOT err STREQUAL
+     "${DIR}/truncated_W.csv:${count}:${column}: error: ${truncated}\n${last}\n${caret}\n")
+    fail(two_sets "exit status '${status}':\n${out}${err}")
+  endif()
+  foreach(set F W)
+    file(READ ${DIR}/out_${set}.csv now)
+    if(NOT now STREQUAL previous OR EXISTS ${DIR}/out_${set}.csv.tmp)
+      fail(two_sets "out_${set}.csv was touched")
+    endif()
+  endforeach()
 endif()
 
 get_property(count GLOBAL PROPERTY failure_count)
