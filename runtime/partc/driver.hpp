@@ -4,8 +4,9 @@
 //
 // Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
-// --log FILE.csv, --log-every M, --quiet; "--option=value" works too. Exit status: 0 success, 1 bad
-// input file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
+// --last-finite FILE.csv, --log FILE.csv, --log-every M, --quiet;
+// "--option=value" works too. Exit status: 0 success, 1 bad input file or I/O
+// failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
 // Surprises:
 // - Every argument is checked before any work, including the parameter
@@ -16,6 +17,9 @@
 //   more than a step after the last clean check says since when it may be
 //   there. --output never holds a NaN; on a blow-up no output file is written (VTK
 //   frames of earlier steps stay: they are complete and help to find the cause).
+// - Instead, the last state found finite is written (last_finite.hpp), to
+//   --last-finite FILE.csv, by default OUTPUT.last-finite.csv beside --output,
+//   else MODEL.last-finite.csv here; the message says where and of which step.
 // - The model's sets are discovered through for_each_set on a freshly
 //   constructed model, before init or load: generated models hold their sets
 //   as members, so this needs no extra API.
@@ -54,6 +58,7 @@
 #include "partc/csv.hpp"
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
+#include "partc/last_finite.hpp"
 #include "partc/model_support.hpp"  // ParamInfo: a model used as a library needs it too
 #include "partc/thermo_log.hpp"
 #include "partc/vec.hpp"
@@ -71,6 +76,7 @@ struct DriverOptions {
   std::string vtk_prefix;                                   // "" = no VTK output
   std::optional<std::int64_t> every;  // VTK interval; default: the model's, else 1
   std::int64_t check_every = 1;
+  std::string last_finite;    // "" = the default path (last_finite_path)
   std::string log;            // "" = no CSV time series
   std::string matrix_market;  // "" = no Matrix Market files of solves
   std::vector<std::pair<std::string, std::int64_t>> stages;  // (named stage, runs), in order
@@ -122,7 +128,8 @@ struct has_time<Model, std::void_t<decltype(std::declval<const Model&>().time())
 inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
-         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M] [--log FILE.csv]"
+         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M]"
+         " [--last-finite FILE.csv] [--log FILE.csv]"
          " [--log-every M] [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
 }
 
@@ -192,6 +199,9 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
         throw UsageError("--every must be at least 1 (step 0 is always written)");
     } else if (option == "--check-every") {
       options.check_every = parse_count<std::int64_t>(option, value());
+    } else if (option == "--last-finite") {
+      options.last_finite = value();
+      require_directory_of(option, options.last_finite);
     } else if (option == "--set") {
       const std::string assignment = value();
       const auto equals = assignment.find('=');
@@ -278,7 +288,10 @@ void print_help(std::ostream& out, const Model& model) {
        << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
        << "  --every M            VTK every M steps (default: the model's output interval, else 1;\n"
        << "                       step 0 is always written)\n"
-       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n";
+       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n"
+       << "  --last-finite F.csv  on a blow-up, write the last state found finite to F.csv\n"
+       << "                       (default OUTPUT.last-finite.csv, else " << name
+       << ".last-finite.csv)\n";
   if constexpr (has_stages<Model>::value)
     text << "  --stage NAME[:K]     run a named stage K times (default 1) after init, before\n"
          << "                       the steps; repeatable, in order (stages: "
@@ -348,6 +361,35 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
   out << text.str();
 }
 
+// Where the last finite state goes: --last-finite, else beside --output, else
+// here, named after the model.
+template <class Model>
+std::string last_finite_path(const DriverOptions& options) {
+  if (!options.last_finite.empty()) return options.last_finite;
+  if (options.output.empty()) return std::string(Model::model_name) + ".last-finite.csv";
+  const std::filesystem::path p(options.output);
+  return (p.parent_path() / (p.stem().string() + ".last-finite" + p.extension().string()))
+      .string();
+}
+
+// Writes the kept state after a blow-up; returns what to add to its message.
+template <class Model>
+std::string keep_last_finite(const LastFinite& kept, const Model& model,
+                             const DriverOptions& options) {
+  if (kept.empty()) return "no state was found finite before it, so none is written";
+  const std::string path = last_finite_path<Model>(options);
+  const bool several = set_names(model).size() > 1;
+  try {
+    const std::vector<std::string> paths = kept.write(
+        [&](const std::string& set) { return several ? path_for_set(path, set) : path; });
+    return "the last state found finite, at step " + std::to_string(kept.step()) + ", is in " +
+           join(paths) + " (--input reads it back)";
+  } catch (const std::exception& e) {
+    return "the last state found finite, at step " + std::to_string(kept.step()) +
+           ", could not be written: " + e.what();
+  }
+}
+
 template <class Model>
 void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
@@ -389,6 +431,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
   std::int64_t clean = -1;  // the last step found finite
+  LastFinite kept(model);
   const auto check = [&](std::int64_t step) {
     try {
       model.check_finite();
@@ -400,29 +443,35 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
                            "finds the step)");
     }
     clean = step;
+    kept.take(model, step);
   };
-  for (std::int64_t k = 0; k <= options.steps; ++k) {
-    if (k > 0) model.step();
-    const std::int64_t step = model.step_count();
-    bool frame = false;
-    model.for_each_set([&](const char* name, const auto&) {
-      if (series.count(name) && due(step, options.every.value_or(frames.at(name).every)))
-        frame = true;
-    });
-    checked = due(step, options.check_every) || (frame && options.check_every > 0);
-    if (checked) check(step);
-    if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
-    double time = static_cast<double>(step);
-    if constexpr (has_time<Model>::value) time = model.time();
-    model.for_each_set([&](const char* name, const auto& set) {
-      const auto s = series.find(name);
-      if (s == series.end()) return;
-      const FrameSpec& f = frames.at(name);
-      if (due(step, options.every.value_or(f.every)))
-        s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
-    });
+  try {
+    for (std::int64_t k = 0; k <= options.steps; ++k) {
+      if (k > 0) model.step();
+      const std::int64_t step = model.step_count();
+      bool frame = false;
+      model.for_each_set([&](const char* name, const auto&) {
+        if (series.count(name) && due(step, options.every.value_or(frames.at(name).every)))
+          frame = true;
+      });
+      checked = due(step, options.check_every) || (frame && options.check_every > 0);
+      if (checked) check(step);
+      if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
+      double time = static_cast<double>(step);
+      if constexpr (has_time<Model>::value) time = model.time();
+      model.for_each_set([&](const char* name, const auto& set) {
+        const auto s = series.find(name);
+        if (s == series.end()) return;
+        const FrameSpec& f = frames.at(name);
+        if (due(step, options.every.value_or(f.every)))
+          s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
+      });
+    }
+    if (options.check_every > 0 && !checked) check(model.step_count());
+  } catch (const NumericalError& e) {
+    throw NumericalError(std::string(e.what()) + "\n" + Model::model_name +
+                         ": note: " + keep_last_finite(kept, model, options));
   }
-  if (options.check_every > 0 && !checked) check(model.step_count());
   if (log) log->close();
 
   if (!options.output.empty())
