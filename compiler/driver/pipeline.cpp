@@ -24,6 +24,10 @@ Compilation analyse(const SourceFile& file) {
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
+  // Terms that are NaN or Inf for coincident particles: warnings only.
+  c.coincident = find_coincident_pairs(c.model, file.text());
+  for (const auto& [id, fact] : c.coincident)
+    if (fact.warning) c.warnings.push_back(*fact.warning);
   return c;
 }
 
@@ -50,6 +54,8 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         out += fmt::format("  {}: {}\n", ir::accumulation_heading(c.model, st, *acc), fact.reason);
         if (c.facts.uniform_sums.at(acc->id).once)
           out += "    " + c.facts.uniform_sums.at(acc->id).reason + "\n";
+        if (c.coincident.at(acc->id).singular)
+          out += "    coincident particles: " + c.coincident.at(acc->id).reason + "\n";
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
         const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
         out += std::string("    pairs: ") +

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "analysis/coincident_pairs.hpp"
 #include "ast/ast.hpp"
 #include "codegen/codegen.hpp"
 #include "ir/ir.hpp"
@@ -15,6 +16,7 @@ struct Compilation {
   ast::Program ast;
   ir::Model model;
   ModelFacts facts;
+  CoincidenceReport coincident;  // for warnings and --explain only
   std::vector<Diagnostic> warnings;
 };
 
