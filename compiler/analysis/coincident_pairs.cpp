@@ -21,6 +21,8 @@
 
 #include <fmt/format.h>
 
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "ir/visitor.hpp"
@@ -36,7 +38,15 @@ using ArgFacts = std::vector<bool>;
 
 struct Singularity {
   const ir::ExprNode* at = nullptr;  // what is 0 at |dx| = 0
-  std::string what;                  // the term "divides by" it, "takes the log of" it, ...
+  std::string op;                    // "divides by" it, "takes the log of" it, ...
+  std::string outer_fn, inner_fn;    // the user functions it is passed through, if any
+
+  // What the term does with it, as "the term ___ it".
+  std::string what() const {
+    if (outer_fn.empty()) return op;
+    return "passes it to " + outer_fn +
+           (inner_fn == outer_fn ? "" : " (and on to " + inner_fn + ")") + ", which " + op;
+  }
 };
 
 class CoincidentTerms {
@@ -55,7 +65,8 @@ class CoincidentTerms {
     }
     if (auto a = ir::as<ir::FnArg>(e))
       return static_cast<std::size_t>(a->index) < args.size() && args[a->index];
-    if (auto u = ir::as<ir::Unary>(e)) return u->op == ir::UnaryOp::Neg && vanishes(u->operand, args);
+    if (auto u = ir::as<ir::Unary>(e))
+      return u->op == ir::UnaryOp::Neg && vanishes(u->operand, args);
     if (auto b = ir::as<ir::Binary>(e)) {
       switch (b->op) {
         case ir::BinaryOp::Mul: return vanishes(b->lhs, args) || vanishes(b->rhs, args);
@@ -82,8 +93,14 @@ class CoincidentTerms {
         if (!vanishes(c, args)) return false;
       return true;
     }
-    if (auto s = ir::as<ir::Select>(e)) return vanishes(s->then, args) && vanishes(s->otherwise, args);
-    if (auto f = ir::as<ir::FnCall>(e)) return vanishes(model_.functions[f->fn].body, facts_of(*f, args));
+    if (auto s = ir::as<ir::Select>(e))
+      return vanishes(s->then, args) && vanishes(s->otherwise, args);
+    if (auto f = ir::as<ir::FnCall>(e)) {
+      const Call key{f->fn, facts_of(*f, args)};
+      if (auto known = vanishing_calls_.find(key); known != vanishing_calls_.end())
+        return known->second;
+      return vanishing_calls_[key] = vanishes(model_.functions[f->fn].body, key.second);
+    }
     return false;
   }
 
@@ -114,12 +131,17 @@ class CoincidentTerms {
       for (const Expr& a : f->args)
         if (Singularity s = singular(a, args); s.at) return s;
       const ir::UserFn& fn = model_.functions[f->fn];
-      const ArgFacts facts = facts_of(*f, args);
-      const Singularity inner = singular(fn.body, facts);
+      const Call key{f->fn, facts_of(*f, args)};
+      auto known = singular_calls_.find(key);
+      if (known == singular_calls_.end())
+        known = singular_calls_.emplace(key, singular(fn.body, key.second)).first;
+      const Singularity& inner = known->second;
+      const ArgFacts& facts = key.second;
       if (!inner.at) return {};
       std::size_t k = 0;  // the argument that is 0 (the first, if several are)
       while (!facts[k]) ++k;
-      return {f->args[k].get(), "passes it to " + fn.name + ", which " + inner.what};
+      return {f->args[k].get(), inner.op, fn.name,
+              inner.inner_fn.empty() ? fn.name : inner.inner_fn};
     }
     if (auto u = ir::as<ir::Unary>(e)) return singular(u->operand, args);
     if (auto c = ir::as<ir::Component>(e)) return singular(c->vec, args);
@@ -226,6 +248,11 @@ class CoincidentTerms {
   const ir::Model& model_;
   const int label_;
   int from_ = -1;
+  // A function's body is read once per (function, which arguments vanish):
+  // functions calling functions twice each would otherwise cost 2^depth.
+  using Call = std::pair<int, ArgFacts>;
+  std::map<Call, bool> vanishing_calls_;
+  std::map<Call, Singularity> singular_calls_;
 };
 
 class AccumulationFinder : public ir::Visitor {
@@ -248,18 +275,18 @@ class AccumulationFinder : public ir::Visitor {
       const ir::Label& to = statement->labels[acc.label];
       const bool self = terms.from() >= 0 && statement->labels[terms.from()].set == to.set &&
                         !excludes_self(acc.condition, terms.from(), acc.label);
-      const std::string where =
-          self ? "for " + to.name + " = " + statement->labels[terms.from()].name +
-                     " itself and where particles coincide"
-               : "where particles coincide";
-      fact.reason = fmt::format("{} is 0 {}, and the term {} it: {}", zero, where, found.what,
+      const std::string where = self ? "for " + to.name + " = " +
+                                           statement->labels[terms.from()].name +
+                                           " itself and where particles coincide"
+                                     : "where particles coincide";
+      fact.reason = fmt::format("{} is 0 {}, and the term {} it: {}", zero, where, found.what(),
                                 fact.excluded ? "the condition excludes |dx| = 0"
                                               : "the condition allows |dx| = 0 (warning)");
       if (!fact.excluded)
         fact.warning = Diagnostic{
             found.at->loc,
             fmt::format("{} is 0 {}, and the term {} it: NaN or Inf there", zero, where,
-                        found.what),
+                        found.what()),
             "add '|dx| > 0' to the condition, as in sum(" + to.name +
                 ", |dx| < rc and |dx| > 0, ...), or guard the term with if(|dx| > 0, ..., ...)",
             true};
