@@ -12,9 +12,12 @@
 // through one label is neither on its own, but a commutative operation on it
 // and its twin read through the other label is even -- r[i] + r[j],
 // m[i] * m[j], max(h[i], h[j]) -- and a difference of twins, v[j] - v[i], is
-// odd. User functions are pure, so a call with even arguments is even; their
-// bodies are not looked at. The rules are sound, not complete: what they
-// cannot show symmetric is evaluated both ways, which is always correct.
+// odd. A user function's call is judged by its body with the arguments put
+// in (ir/inline_calls.hpp): amix(a[i], a[j]) with fn amix(x, y) = sqrt(x * y)
+// is even, because x * y becomes a[i] * a[j]; past the inlining budget, a
+// call is even when its arguments are. The rules are sound, not complete:
+// what they cannot show symmetric is evaluated both ways, which is always
+// correct.
 //
 // Only sums and counts over the statement's own set qualify: a pair's term is
 // added into both particles' totals, which a min or max does not do, and a
@@ -23,6 +26,7 @@
 
 #include <fmt/format.h>
 
+#include "ir/inline_calls.hpp"
 #include "ir/visitor.hpp"
 #include "support/diagnostics.hpp"
 
@@ -53,7 +57,7 @@ bool is_commutative(ir::BinaryOp op) {
 // `j` of one accumulation.
 class PairExchange {
  public:
-  explicit PairExchange(int j) : j_(j) {}
+  PairExchange(const ir::Model& model, int j) : model_(model), j_(j) {}
 
   // The innermost expression found to be neither, first in evaluation order:
   // where the asymmetry starts, for the reason.
@@ -79,7 +83,9 @@ class PairExchange {
         return found(e, p);
       }
       case ir::ExprKind::Component: return parity(ir::as<ir::Component>(e)->vec);
-      case ir::ExprKind::FnCall: return found(e, all_even(ir::as<ir::FnCall>(e)->args));
+      case ir::ExprKind::FnCall:
+        if (const Expr body = ir::inline_calls(e, model_)) return parity(body);
+        return found(e, all_even(ir::as<ir::FnCall>(e)->args));
       // T picks the same branch when it leaves the condition alone.
       case ir::ExprKind::Select: {
         auto s = ir::as<ir::Select>(e);
@@ -220,6 +226,7 @@ class PairExchange {
     internal_error("PairExchange: unknown expression kind");
   }
 
+  const ir::Model& model_;
   const int j_;
 };
 
@@ -256,7 +263,7 @@ PairSymmetryFact judge(const ir::Model& model, const ir::Statement& st, const ir
     return fact;
   }
   // No condition: every pair, both ways.
-  PairExchange condition(acc.label);
+  PairExchange condition(model, acc.label);
   if (acc.condition && condition.parity(acc.condition) != Parity::Even) {
     fact.reason = asymmetry("the condition", condition.culprit, exchange, model, st, acc.label);
     return fact;
@@ -266,7 +273,7 @@ PairSymmetryFact judge(const ir::Model& model, const ir::Statement& st, const ir
     fact.reason = "the condition is symmetric under " + exchange;
     return fact;
   }
-  PairExchange term(acc.label);
+  PairExchange term(model, acc.label);
   switch (term.parity(acc.body)) {
     case Parity::Even:
       fact.newton = true;

@@ -42,6 +42,12 @@ partc::PairSymmetryFact symmetry_of(const std::string& statement) {
       "param rc: real = 0.1\n"
       "fn lj_force(s: real) = 24 * pow(s, 4) * (2 * pow(s, 3) - 1)\n"
       "fn W(q: real) = exp(-q * q)\n"
+      "fn amix(x: real, y: real) = sqrt(x * y)\n"
+      "fn smix(x: real, y: real) = (x + y) / 2\n"
+      "fn lj(e: real, s: real, r: real) = 4 * e * (pow(s / r, 12) - pow(s / r, 6))\n"
+      "fn ratio(x: real, y: real) = x / y\n"
+      "fn gap(x: real, y: real) = x - y\n"
+      "fn twice(x: real) = amix(x, x) + amix(x, x)\n"
       "particles P(10) {\n  v: vec = 0\n  r: real = 0.01\n  m: real = 1\n  h: real = 0.1\n"
       "  u: real = 0\n  n: int = 0\n  f: vec = 0\n}\n"
       "particles Q(5) {\n  m: real = 1\n}\n"
@@ -125,6 +131,13 @@ TEST_CASE("symmetry: even terms under an even condition take each pair once", "[
   CHECK(newton_sign("n[i] = count(j, |dx| < rc and id[j] != id[i])") == 1);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, cross(dx, v[i] - v[j]))") == 1);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(m[i] + m[j] > 1, exp(-|dx|), 0))") == 1);
+  // Mixing rules in user functions: judged by their bodies.
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, amix(m[i], m[j]) * W(|dx|))") == 1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc and |dx| > 0, "
+                    "lj(amix(m[i], m[j]), smix(h[i], h[j]), |dx|))") == 1);
+  CHECK(newton_sign("f[i] = sum(j, |dx| < smix(r[i], r[j]), amix(m[i], m[j]) * dx)") == -1);
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc, gap(h[j], h[i]) * dx)") == 1);  // odd * odd
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, twice(m[i] * m[j]))") == 1);   // calls in calls
 }
 
 TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
@@ -141,6 +154,8 @@ TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(dx.x > 0, 1, -1))") == 0);  // condition odd
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(|dx| < 0.05, dx.x, 1))") == 0);  // odd, even
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, mod(dx.x, 0.1))") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, ratio(m[i], m[j]))") == 0);  // m[i] / m[j]
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, amix(m[i], h[j]))") == 0);   // no twins
   // Not a sum, or not over i's own set.
   CHECK(newton_sign("u[i] = min(j, |dx| < rc, |dx|)") == 0);
   CHECK(newton_sign("u[i] = max(j, |dx| < rc, m[i] * m[j])") == 0);
