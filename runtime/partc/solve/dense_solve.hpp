@@ -39,7 +39,8 @@
 //   sizes: x was the same bit for bit for 1 to 8 threads, and test_solve checks
 //   1 against 2.
 // - A and b are checked for NaN and Inf first (solve_result.hpp); an exactly
-//   singular A is no error: its LU has rcond 0 (or NaN) and takes the fallback.
+//   singular A is no error: its LU has rcond 0 and takes the fallback (Eigen's
+//   NaN for an exact zero pivot is reported as 0).
 #pragma once
 
 #include <Eigen/Dense>
@@ -81,7 +82,10 @@ inline void check_finite_dense(const Eigen::MatrixXd& A, const std::string& name
   result.name = options.name;
   result.n = A.rows();
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-  const double rcond = lu.rcond();
+  // An exact zero pivot (two equal rows, say) makes Eigen's estimate NaN; the
+  // reciprocal condition number of a singular matrix is 0, and so we report it.
+  const double estimate = lu.rcond();
+  const double rcond = std::isnan(estimate) ? 0.0 : estimate;
   result.rcond = rcond;
   if (rcond >= options.rcond_threshold) {  // false for NaN too
     result.method = "dense LU";
