@@ -39,7 +39,8 @@ class BruteForce {
  public:
   static constexpr double max_lengths_per_radius = 10.0;
 
-  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
+  template <class T>
+  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D, T>>& points) {
     check_search_arguments(domain, radius);
     domain_ = domain;
     squared_reach_ = radius * radius * (1 + 1e-12);

@@ -20,7 +20,11 @@
 //   column, a quoted field cut after 40 bytes. A line over 16 MiB is an error
 //   (/dev/zero or a binary file cannot fill the memory).
 // - Numbers are written in the shortest form that reads back to the same
-//   double ("0.1", not "0.10000000000000001"): a round trip is exact.
+//   double ("0.1", not "0.10000000000000001"): a round trip is exact. Data
+//   stored as float (a schedule's precision = float) is written as the double
+//   it widens to, so it reads back as that double, which rounds to the same
+//   float: exact too. Loading a float variable rounds each value to the
+//   nearest float; one beyond a float's range is an error at its field.
 // - Writers go through path + ".tmp" and a rename, so a failure or a crash
 //   never leaves a half-written file under the real name (output_file.hpp;
 //   a link, a pipe or a device such as /dev/stdout is written in place).
@@ -38,6 +42,7 @@
 #include <filesystem>
 #include <fstream>
 #include <ios>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <streambuf>
@@ -480,6 +485,15 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
               1, table.header.size(),
               "missing column '" + column + "' (" +
                   (required ? "positions are required" : "a vec needs all its components") + ")");
+      } else if constexpr (std::is_same_v<typename StorageTraits<S>::component_type, float>) {
+        // A variable stored as float: a finite double beyond its range would become inf.
+        const auto c = static_cast<std::size_t>(found);
+        for (std::size_t r = 0; r < table.rows.size(); ++r)
+          if (std::abs(table.rows[r][c]) > std::numeric_limits<float>::max()) {
+            std::string message = "column '" + column + "' is stored as float, which cannot hold ";
+            detail::append_number(message, table.rows[r][c]);
+            throw table.error_at(table.lines[r], c, message);
+          }
       } else if constexpr (std::is_same_v<S, std::uint8_t>) {
         check_integers(static_cast<std::size_t>(found), 0, 1, "0 or 1 (a bool)");
       } else if constexpr (std::is_integral_v<S>) {
@@ -519,10 +533,11 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
       if (found < 0) continue;
       for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const double x = table.rows[r][static_cast<std::size_t>(found)];
+        // Integral where S is, checked above; rounded to the nearest float where S holds floats.
         if constexpr (StorageTraits<S>::is_vec)
-          values[r][static_cast<int>(k)] = x;
+          values[r][static_cast<int>(k)] = static_cast<typename S::value_type>(x);
         else
-          values[r] = static_cast<S>(x);  // integral where S is, checked above
+          values[r] = static_cast<S>(x);
       }
     }
   });

@@ -11,18 +11,35 @@
 //   (the same point of the torus).
 // - NaN stays NaN through both maps (+-inf becomes NaN), so a blow-up is never
 //   hidden inside the box; non-periodic components are never touched.
+// - wrap_into stores a wrapped point at a position's precision (float for a
+//   schedule's precision = float): the float nearest a point just below hi can
+//   be hi itself, or beyond it when hi is no float, so it takes the float
+//   below instead (round_inside). The box must hold a float for that: any box
+//   wider than a few float ulps of its bounds does.
 // - check_search_arguments validates what every neighbour search needs, so the
 //   search structures share one message.
 #pragma once
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "partc/vec.hpp"
 
 namespace partc {
+
+// x (in [lo, hi), or [lo, hi] when `closed`) rounded to the nearest T, or to
+// its neighbour towards x when the nearest T lies outside: one step always
+// suffices, the neighbour being on x's other side. NaN stays NaN.
+template <class T>
+T round_inside(double x, double lo, double hi, bool closed = false) {
+  T r = static_cast<T>(x);
+  if (closed ? r > hi : r >= hi) r = std::nextafter(r, std::numeric_limits<T>::lowest());
+  if (r < lo) r = std::nextafter(r, std::numeric_limits<T>::max());
+  return r;
+}
 
 template <int D>
 struct Domain {
@@ -57,6 +74,14 @@ struct Domain {
       x[k] = y;
     }
     return x;
+  }
+
+  // stored = wrap(x) at stored's precision, periodic components kept in [lo, hi).
+  template <class T>
+  void wrap_into(Vec<D, T>& stored, const Vec<D>& x) const {
+    const Vec<D> w = wrap(x);
+    for (int k = 0; k < D; ++k)
+      stored[k] = periodic[k] ? round_inside<T>(w[k], lo[k], hi[k]) : static_cast<T>(w[k]);
   }
 };
 

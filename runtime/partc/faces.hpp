@@ -8,7 +8,8 @@
 // - open: the particle leaves its set; leave_through_open_faces removes it
 //   and returns how many left, so a run can report them.
 // Surprises:
-// - A reflected coordinate may equal hi (the interval is closed).
+// - A reflected coordinate may equal hi (the interval is closed); one stored
+//   as float stays in [lo, hi] after rounding (round_inside, domain.hpp).
 // - NaN is never moved or removed (its comparisons are false), so a blow-up
 //   still reaches the finite check instead of vanishing through a face.
 #pragma once
@@ -18,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "partc/domain.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -63,10 +65,14 @@ struct Faces {
 // and turns the same components of each mirrored array (velocities).
 template <class Set, int D, class... Mirrored>
 void reflect_through_faces(Set& set, const Faces<D>& faces, Mirrored&... mirrored) {
+  using T = typename Set::position_type::value_type;
   auto& p = set.positions();
   std::array<bool, D> turned{};
   for (std::size_t i = 0; i < set.size(); ++i) {
-    p[i] = faces.reflect_position(p[i], turned);
+    const Vec<D> x = faces.reflect_position(widen(p[i]), turned);
+    for (int k = 0; k < D; ++k)
+      p[i][k] = faces.reflect[k] ? round_inside<T>(x[k], faces.lo[k], faces.hi[k], true)
+                                 : static_cast<T>(x[k]);
     for (int k = 0; k < D; ++k)
       if (turned[k]) ((mirrored[i][k] = -mirrored[i][k]), ...);
   }

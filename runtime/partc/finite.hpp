@@ -21,20 +21,22 @@
 namespace partc {
 
 // What one particle's value of a variable looks like once flattened:
-// scalars (double, std::int64_t, std::uint8_t) are one component of their own
-// type, Vec<D> is D doubles.
+// scalars (double, float, std::int64_t, std::uint8_t) are one component of
+// their own type, Vec<D, T> is D of T (double, or float when so stored).
 template <class S>
 struct StorageTraits {
+  using component_type = S;
   static constexpr bool is_vec = false;
   static constexpr int components = 1;
   static const S& component(const S& value, int) { return value; }
 };
 
-template <int D>
-struct StorageTraits<Vec<D>> {
+template <int D, class T>
+struct StorageTraits<Vec<D, T>> {
+  using component_type = T;
   static constexpr bool is_vec = true;
   static constexpr int components = D;
-  static double component(const Vec<D>& value, int k) { return value[k]; }
+  static T component(const Vec<D, T>& value, int k) { return value[k]; }
 };
 
 template <class Set>

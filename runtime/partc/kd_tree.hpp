@@ -71,7 +71,8 @@ class KdTree {
   // 24 are within noise.
   static constexpr std::size_t leaf_size = 12;
 
-  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
+  template <class T>
+  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D, T>>& points) {
     check_search_arguments(domain, radius);
     domain_ = domain;
     squared_reach_ = radius * radius * (1 + 1e-12);

@@ -25,7 +25,8 @@ namespace partc {
 template <int D>
 class LinkedCellList {
  public:
-  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
+  template <class T>
+  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D, T>>& points) {
     grid_ = CellGrid<D>(domain, radius, points.size());
     points_.resize(points.size());
     next_.resize(points.size());

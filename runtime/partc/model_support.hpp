@@ -6,7 +6,7 @@
 // - shown: a number for a message, in 6 significant digits.
 // - load_set: a particle set from a CSV table, with the model's declared
 //   initial values for the variables the table lacks, and positions wrapped
-//   into the periodic domain.
+//   into the periodic domain (at their precision: Domain::wrap_into).
 //
 // Surprises: parse_param accepts the whole text or throws (no "10abc");
 // bools are true/false/1/0.
@@ -83,7 +83,7 @@ template <class Set, class Initialise>
 void load_set(Set& set, const CsvTable& table, const Domain<Set::dim>& domain,
               Initialise&& initialise) {
   load_set(table, set, initialise);
-  for (auto& x : set.positions()) x = domain.wrap(x);
+  for (auto& x : set.positions()) domain.wrap_into(x, widen(x));
 }
 
 }  // namespace partc

@@ -11,6 +11,10 @@
 // Query contract: as BruteForce (brute_force.hpp), including its images: a
 // radius over half a periodic length reports every image within the radius.
 //
+// Positions stored as float (a schedule's precision = float) are searched as
+// doubles: every structure's build copies the points widened (exactly) to
+// Vec<D>, so each dx is the difference of two doubles, as in a double model.
+//
 // A radius of 0 or less (a model's |dx| < r with r = 0) searches within the
 // smallest positive double instead: the condition then holds for coincident
 // particles at most, and those are what that finds; it is not an error.

@@ -40,7 +40,8 @@ namespace partc {
 template <int D>
 class OrderedCellList {
  public:
-  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& points) {
+  template <class T>
+  void build(const Domain<D>& domain, double radius, const std::vector<Vec<D, T>>& points) {
     const std::size_t n = points.size();
     grid_ = CellGrid<D>(domain, radius, n);
     cell_of_point_.resize(n);

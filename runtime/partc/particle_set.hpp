@@ -1,6 +1,9 @@
 // partc/particle_set.hpp: ParticleSet<D, Vars...>, a structure-of-arrays particle
 // container: positions, ids, alive flags and one contiguous std::vector per
 // variable tag (struct P_v { using type = Vec<2>; static constexpr const char* name = "v"; }).
+// A tag's type is what the set stores: Vec<2, float> or float for a variable
+// the schedule stores as float. BasicParticleSet<Position, Vars...> chooses the
+// positions' type too (Vec<2, float>); ParticleSet<D, ...> stores them as Vec<D>.
 //
 // Surprises:
 // - bool variables are stored as std::uint8_t (storage_t<bool>), never as
@@ -34,10 +37,11 @@ struct Storage<bool> {
 template <class T>
 using storage_t = typename Storage<T>::type;
 
-template <int D, class... Vars>
-class ParticleSet {
+template <class Position, class... Vars>
+class BasicParticleSet {
  public:
-  static constexpr int dim = D;
+  static constexpr int dim = Position::dim;
+  using position_type = Position;
 
   std::size_t size() const { return positions_.size(); }
   bool empty() const { return positions_.empty(); }
@@ -47,10 +51,10 @@ class ParticleSet {
   }
 
   // Returns the index of the new particle; its id is next_id().
-  std::size_t push_back(const Vec<D>& position) { return append(position, next_id_++); }
+  std::size_t push_back(const Position& position) { return append(position, next_id_++); }
 
   // For loading particles with given ids; duplicate ids are the caller's check.
-  void push_back_with_id(const Vec<D>& position, std::int64_t id) {
+  void push_back_with_id(const Position& position, std::int64_t id) {
     append(position, id);
     if (id >= next_id_) next_id_ = id + 1;
   }
@@ -60,8 +64,8 @@ class ParticleSet {
     for_each_array([](auto& a) { a.clear(); });
   }
 
-  std::vector<Vec<D>>& positions() { return positions_; }
-  const std::vector<Vec<D>>& positions() const { return positions_; }
+  std::vector<Position>& positions() { return positions_; }
+  const std::vector<Position>& positions() const { return positions_; }
   const std::vector<std::int64_t>& ids() const { return ids_; }
   std::vector<std::uint8_t>& alive() { return alive_; }
   const std::vector<std::uint8_t>& alive() const { return alive_; }
@@ -131,7 +135,7 @@ class ParticleSet {
     return i;
   }
 
-  std::size_t append(const Vec<D>& position, std::int64_t id) {
+  std::size_t append(const Position& position, std::int64_t id) {
     positions_.push_back(position);
     ids_.push_back(id);
     std::apply([](auto&... v) { (v.emplace_back(), ...); }, vars_);  // value-initialised: 0
@@ -148,11 +152,14 @@ class ParticleSet {
     fn(alive_);
   }
 
-  std::vector<Vec<D>> positions_;
+  std::vector<Position> positions_;
   std::vector<std::int64_t> ids_;
   std::vector<std::uint8_t> alive_;
   std::tuple<std::vector<storage_t<typename Vars::type>>...> vars_;
   std::int64_t next_id_ = 0;
 };
+
+template <int D, class... Vars>
+using ParticleSet = BasicParticleSet<Vec<D>, Vars...>;
 
 }  // namespace partc

@@ -105,7 +105,7 @@ class VerletList {
                          set.positions().size() != at_build_.size() ||
                          moved_more_than_half_skin(set.positions());
     if (rebuild) build(domain, radius, set);
-    const std::vector<Vec<D>>& positions = set.positions();
+    const auto& positions = set.positions();  // float ones widen in wrap
     current_.resize(positions.size());
     parallel_for(positions.size(), LoopWork::light,
                  [&](std::size_t i) { current_[i] = domain.wrap(positions[i]); });
@@ -201,13 +201,14 @@ class VerletList {
     });
   }
 
-  bool moved_more_than_half_skin(const std::vector<Vec<D>>& positions) {
+  template <class T>
+  bool moved_more_than_half_skin(const std::vector<Vec<D, T>>& positions) {
     const double limit = 0.25 * skin_ * skin_;
     const std::size_t n = positions.size();
     moved_.assign(blocks_of(n), 0);
     for_each_block(n, [&](std::size_t b, std::size_t first, std::size_t stop) {
       for (std::size_t i = first; i < stop; ++i)
-        if (!(squared_norm(domain_.minimum_image(positions[i] - at_build_[i])) <= limit)) {
+        if (!(squared_norm(domain_.minimum_image(widen(positions[i]) - at_build_[i])) <= limit)) {
           moved_[b] = 1;  // also for NaN
           return;
         }
@@ -221,7 +222,8 @@ class VerletList {
     NeighbourSearch<D> search;
     const double build_radius = radius + skin_ + round_off_guard(domain, radius);
     search.build(domain, build_radius, set);
-    at_build_ = set.positions();  // after the reorder: by the indices the lists use
+    // After the reorder: by the indices the lists use. Widened, if stored as float.
+    at_build_.assign(set.positions().begin(), set.positions().end());
     const std::size_t n = at_build_.size();
     if (n > std::numeric_limits<std::uint32_t>::max())
       throw std::length_error("partc: VerletList: more than 2^32 - 1 particles");

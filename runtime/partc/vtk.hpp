@@ -62,14 +62,18 @@ inline std::string xml_escape(const std::string& text) {
   return escaped;
 }
 
+// The DataArray type of a variable stored as S: a Vec<D, T> is T's.
 template <class S>
 constexpr const char* vtk_type_name() {
-  if constexpr (std::is_same_v<S, std::int64_t>)
+  using Component = typename StorageTraits<S>::component_type;
+  if constexpr (std::is_same_v<Component, std::int64_t>)
     return "Int64";
-  else if constexpr (std::is_same_v<S, std::uint8_t>)
+  else if constexpr (std::is_same_v<Component, std::uint8_t>)
     return "UInt8";
+  else if constexpr (std::is_same_v<Component, float>)
+    return "Float32";  // stored as float (a schedule's precision = float)
   else
-    return "Float64";  // double and Vec<D>
+    return "Float64";
 }
 
 // Appends `components` numbers for one value: its own, then zeros.
@@ -141,7 +145,9 @@ void write_vtu(const std::string& path, const Set& set,
     });
     out << "      </PointData>\n"
         << "      <Points>\n";
-    detail::write_vtk_array(out, "Float64", "Points", 3, n, [&](std::string& line, std::size_t r) {
+    using Position = typename Set::position_type;
+    detail::write_vtk_array(out, detail::vtk_type_name<Position>(), "Points", 3, n,
+                            [&](std::string& line, std::size_t r) {
       detail::append_vtk_value(line, set.positions()[order[r]], 3);
     });
     out << "      </Points>\n"
