@@ -168,6 +168,7 @@ struct var_decl_id : locate {};
 struct fn_decl_id : locate {};
 struct schedule_block_id : locate {};
 struct schedule_item_id : locate {};
+struct schedule_subject_id : locate {};
 struct schedule_option_id : locate {};
 struct fn_param_id : locate {};
 struct particles_decl_id : locate {};
@@ -237,8 +238,10 @@ x3::rule<schedule_block_id, ast::ScheduleBlock> const schedule_block = "a schedu
 x3::rule<class schedule_block_text_id, ast::ScheduleBlock> const schedule_block_text =
     "a schedule block";
 x3::rule<schedule_item_id, ast::ScheduleItem> const schedule_item = "a schedule entry";
+x3::rule<schedule_subject_id, ast::ScheduleSubject> const schedule_subject =
+    "a statement name or SET.variable";
 x3::rule<class end_of_schedule_id> const end_of_schedule =
-    "a schedule entry like force: search = cell_list, or '}'";
+    "a schedule entry like force: search = cell_list or P.v: precision = float, or '}'";
 x3::rule<schedule_option_id, ast::ScheduleOption> const schedule_option =
     "an option like search = kd_tree or skin = 0.3";
 x3::rule<fn_param_id, ast::FnParam> const fn_param = "a parameter like r: real";
@@ -465,14 +468,17 @@ auto const stage_block_def =
 auto const end_of_block_def = lit('}');
 
 // schedule_block = "schedule" , "{" , { schedule_item } , "}" ;
-// schedule_item  = identifier , ":" , option , { "," , option } ;
+// schedule_item  = [ schedule_subject , ":" ] , option , { "," , option } ;
+// schedule_subject = identifier , [ "." , identifier ] ;
 // option         = identifier , "=" , expression ;
 auto const set_items = [](auto& ctx) { _val(ctx).items = std::move(_attr(ctx)); };
 auto const schedule_block_def = schedule_block_text;
 auto const schedule_block_text_def =
     (keyword("schedule") > '{' > *schedule_item > end_of_schedule)[set_items];
 auto const end_of_schedule_def = lit('}');
-auto const schedule_item_def = identifier > ':' > (schedule_option % ',');
+auto const schedule_item_def =
+    -(&(schedule_subject >> ':') >> schedule_subject >> ':') >> (schedule_option % ',');
+auto const schedule_subject_def = identifier >> -('.' > identifier);
 auto const schedule_option_def = identifier > '=' > expression;
 
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
@@ -500,7 +506,7 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
 // One BOOST_SPIRIT_DEFINE takes a bounded number of rules (Boost.Preprocessor's limit).
-BOOST_SPIRIT_DEFINE(boundary_clause)
+BOOST_SPIRIT_DEFINE(boundary_clause, schedule_subject)
 
 // Whitespace and comments from '#' to the end of the line.
 auto const skipper = x3::space | lexeme['#' >> *(char_ - x3::eol)];

@@ -202,14 +202,19 @@ struct StageBlock : Located {
   std::vector<BlockStatement> body;
 };
 
-// schedule { force: search = kd_tree, skin = 0.3 }: how named statements
-// run, kept apart from what they compute.
+// schedule { force: search = kd_tree, skin = 0.3  P.v: precision = float }:
+// how named statements run and how variables are stored, kept apart from
+// what they compute.
 struct ScheduleOption : Located {
   Identifier key;
   Chain value;
 };
+struct ScheduleSubject : Located {
+  Identifier name;                     // a statement, or the set of P.v
+  boost::optional<Identifier> member;  // P.v: the variable v of set P
+};
 struct ScheduleItem : Located {
-  Identifier statement;
+  boost::optional<ScheduleSubject> subject;  // none: the whole model (precision = float)
   std::vector<ScheduleOption> options;
 };
 struct ScheduleBlock : Located {

@@ -129,7 +129,10 @@ struct Printer {
   std::string operator()(const ScheduleBlock& n) const {
     std::string out = "(schedule) " + at(n);
     for (const ScheduleItem& item : n.items) {
-      out += "\n  (" + item.statement.name;
+      out += "\n  (" + (!item.subject           ? std::string("model")
+                         : item.subject->member ? item.subject->name.name + "." +
+                                                      item.subject->member->name
+                                                : item.subject->name.name);
       for (const ScheduleOption& o : item.options)
         out += " (" + o.key.name + " " + (*this)(o.value) + ")";
       out += ") " + at(item);

@@ -79,7 +79,9 @@ class Printer {
         return {names_.observables.at(as<ObservableRef>(e)->observable), kPrimary};
       case ExprKind::VarRef: {
         auto v = as<VarRef>(e);
-        return {names_.array(v->set, v->var) + "[" + names_.labels[v->label] + "]", kPrimary};
+        return {emit_load(model_, v->set, v->var,
+                          names_.array(v->set, v->var) + "[" + names_.labels[v->label] + "]"),
+                kPrimary};
       }
       case ExprKind::Dx: return {"dx", kPrimary};
       case ExprKind::Unary: return unary(*as<Unary>(e));
@@ -259,6 +261,11 @@ std::string cpp_type(Type type) {
     case Type::Vec: return "Vec";
   }
   return "?";
+}
+
+std::string emit_load(const Model& model, int set, int var, const std::string& element) {
+  if (model.sets[set].vars[var].storage == Precision::Double) return element;
+  return "partc::widen(" + element + ")";
 }
 
 std::string emit_expression(const Expr& e, const Model& model, const ExpressionNames& names) {

@@ -31,6 +31,11 @@ std::string emit_expression(const ir::Expr& e, const ir::Model& model,
 std::string emit_operand(const ir::Expr& e, ir::BinaryOp operand_of, const ir::Model& model,
                          const ExpressionNames& names);
 
+// `element` (an array element such as "v[i]") of variable `var` of set `set`
+// as kernels compute with it: as it is, or partc::widen(v[i]) when the
+// variable is stored as float, so that every expression computes in double.
+std::string emit_load(const ir::Model& model, int set, int var, const std::string& element);
+
 // A literal of the given type, e.g. "0.0", "3", "true".
 std::string emit_literal(ir::Type type, double value);
 // As `type`; an int exactly, in all 64 bits.

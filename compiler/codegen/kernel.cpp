@@ -292,8 +292,13 @@ std::string ModelEmitter::buffer_member(int s, int var) {
   const ParticleSet& set = m_.sets[s];
   const std::string name =
       members_.fresh((m_.sets.size() > 1 ? set.name + "_" : "") + set.vars[var].name + "_next_");
+  // As the set stores the variable: a float one's buffer holds floats too.
   const Type type = set.vars[var].type;
-  const std::string element = type == Type::Bool ? "std::uint8_t" : cpp_type(type);
+  const std::string element =
+      set.vars[var].storage == Precision::Float
+          ? (var == kPosition ? set_type_[s] + "::position_type" : tag(s, var) + "::type")
+      : type == Type::Bool ? "std::uint8_t"
+                           : cpp_type(type);
   buffers_[key] = {name, element};
   return name;
 }
@@ -472,16 +477,17 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
             reads_j ? " " + j : "", dx.dx ? " dx" : "");
     else  // a query from the searched set itself goes by index: the search knows its cell
       linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", search_for(l.set, st),
-            l.set == st.set ? i : fmt::format("{}[{}]", home_p, i), reads_j ? " " + j : "",
-            dx.dx ? " dx" : "");
+            l.set == st.set ? i : emit_load(m_, st.set, kPosition, home_p + "[" + i + "]"),
+            reads_j ? " " + j : "", dx.dx ? " dx" : "");
     out_ += body;
     line("});");
     if (!pairs_once.empty()) line("}");
   } else {
     linef("for (std::size_t {0} = 0; {0} < {1}.size(); ++{0}) {{", j, set_member_[l.set]);
     if (dx.dx)
-      linef("const Vec dx = domain_.minimum_image({}[{}] - {}[{}]);", names.array(l.set, kPosition),
-            j, home_p, i);
+      linef("const Vec dx = domain_.minimum_image({} - {});",
+            emit_load(m_, l.set, kPosition, names.array(l.set, kPosition) + "[" + j + "]"),
+            emit_load(m_, st.set, kPosition, home_p + "[" + i + "]"));
     out_ += body;
     line("}");
   }
@@ -548,6 +554,8 @@ std::string ModelEmitter::pair_sums_member(const Accumulate& acc, const std::str
   return name;
 }
 
+// A store rounds once to the target's storage: compound assignments to a
+// float compute in double (float += double), Vec<D, float> likewise.
 void ModelEmitter::assignment(const Statement& st, const ExpressionNames& names,
                               const std::string& buffer) {
   const std::string target = names.array(st.set, st.var) + "[" + names.labels[0] + "]";
@@ -563,11 +571,15 @@ void ModelEmitter::assignment(const Statement& st, const ExpressionNames& names,
     static const BinaryOp ops[] = {BinaryOp::Add, BinaryOp::Add, BinaryOp::Sub, BinaryOp::Mul,
                                    BinaryOp::Div};
     const BinaryOp op = ops[static_cast<int>(st.op)];
-    updated = fmt::format("{} {} {}", target, binary_op_spelling(op),
-                          codegen::emit_operand(st.value, op, m_, names));
+    updated = fmt::format("{} {} {}", emit_load(m_, st.set, st.var, target),
+                          binary_op_spelling(op), codegen::emit_operand(st.value, op, m_, names));
   }
-  if (wrap) updated = "domain_.wrap(" + updated + ")";
-  linef("{} = {};", buffer.empty() ? target : buffer + "[" + names.labels[0] + "]", updated);
+  const std::string stored = buffer.empty() ? target : buffer + "[" + names.labels[0] + "]";
+  // A float position rounded to the float nearest the wrapped one could be hi.
+  if (wrap && m_.sets[st.set].vars[kPosition].storage == Precision::Float)
+    linef("domain_.wrap_into({}, {});", stored, updated);
+  else
+    linef("{} = {};", stored, wrap ? "domain_.wrap(" + updated + ")" : updated);
 }
 
 }  // namespace partc::codegen

@@ -237,15 +237,28 @@ void ModelEmitter::public_types() {
     line("");
     linef("// Particle set {} ({}): p, id, alive and its variables.", set.name,
           source_line(set.loc));
+    // A variable stored as float says so here, once; kernels widen its loads.
+    const auto stored_as = [&](const Variable& var) -> std::string {
+      if (var.storage == Precision::Float)
+        return var.type == Type::Vec ? fmt::format("partc::Vec<{}, float>", m_.dim) : "float";
+      return var.type == Type::Vec ? "Vec" : cpp_type(var.type);
+    };
     std::vector<std::string> tags;
     for (std::size_t v = kFirstUserVar; v < set.vars.size(); ++v) {
       const Variable& var = set.vars[v];
       tags.push_back(tag(s, v));
+      if (var.storage == Precision::Float) linef("// {}: stored as float (schedule)", var.name);
       linef("struct {} {{ using type = {}; static constexpr const char* name = \"{}\"; }};",
-            tags.back(), var.type == Type::Vec ? "Vec" : cpp_type(var.type), var.name);
+            tags.back(), stored_as(var), var.name);
     }
-    linef("using {} = partc::ParticleSet<{}{}{}>;", set_type_[s], m_.dim, tags.empty() ? "" : ", ",
-          fmt::join(tags, ", "));
+    const Variable& p = set.vars[kPosition];
+    const std::string listed = tags.empty() ? "" : fmt::format(", {}", fmt::join(tags, ", "));
+    if (p.storage == Precision::Float) {
+      line("// p: stored as float (schedule)");
+      linef("using {} = partc::BasicParticleSet<{}{}>;", set_type_[s], stored_as(p), listed);
+    } else {
+      linef("using {} = partc::ParticleSet<{}{}>;", set_type_[s], m_.dim, listed);
+    }
   }
   line("");
 }

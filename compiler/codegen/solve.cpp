@@ -72,7 +72,9 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
         linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", j, count);
         if (dx.dx) {
           const std::string p = names.array(st.set, kPosition);
-          linef("const Vec dx = domain_.minimum_image({}[{}] - {}[{}]);", p, j, p, i);
+          linef("const Vec dx = domain_.minimum_image({} - {});",
+                emit_load(m_, st.set, kPosition, p + "[" + j + "]"),
+                emit_load(m_, st.set, kPosition, p + "[" + i + "]"));
         }
       }
       if (dx.norm) line("const double dx_norm = partc::norm(dx);");

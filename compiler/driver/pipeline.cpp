@@ -35,6 +35,11 @@ Compilation analyse(const SourceFile& file) {
 std::string explain(const Compilation& c, const SourceFile& file) {
   std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
                                 c.model.sets.size(), c.model.stages.size());
+  out += "storage (computed in double however stored: a load widens, a store rounds once):\n";
+  for (const ir::ParticleSet& set : c.model.sets)
+    for (const ir::Variable& var : set.vars)
+      if (!var.storage_reason.empty())
+        out += "  " + set.name + "." + var.name + ": " + var.storage_reason + "\n";
   for (std::size_t g = 0; g < c.model.stages.size(); ++g) {
     const ir::Stage& stage = c.model.stages[g];
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {

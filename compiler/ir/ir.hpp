@@ -281,6 +281,11 @@ struct Frames {
   Location loc;
 };
 
+// How a particle variable is stored (schedule: precision = float). Every
+// expression is computed in double whatever the storage: a load widens, a
+// store rounds once.
+enum class Precision { Double, Float };
+
 struct Variable {
   std::string name;
   Type type;
@@ -288,6 +293,8 @@ struct Variable {
   bool builtin;  // p, id, alive
   Location loc;
   bool mirrored = false;  // a vec turned with its particle at a reflecting face
+  Precision storage = Precision::Double;  // Float only for real and vec variables and p
+  std::string storage_reason;             // why, for --explain: set by sema's schedule checks
 };
 
 // The builtin variables sit first in every set, in this order.

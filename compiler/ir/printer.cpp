@@ -101,7 +101,9 @@ std::string to_string(const Model& model) {
   for (const ParticleSet& s : model.sets) {
     out += fmt::format("set {} (count {})\n", s.name, to_string(s.initial_count, model, none));
     for (const Variable& v : s.vars)
-      out += fmt::format("  {}: {}{}{}\n", v.name, type_name(v.type), v.builtin ? " (builtin)" : "",
+      out += fmt::format("  {}: {}{}{}{}\n", v.name, type_name(v.type),
+                         v.builtin ? " (builtin)" : "",
+                         v.storage == Precision::Float ? " (stored as float)" : "",
                          v.initial ? " = " + to_string(v.initial, model, {{"i", 0}}) : "");
   }
   for (const Observable& o : model.observables)

@@ -138,6 +138,17 @@ class Sema {
   void not_assignable(const ast::Identifier& name, const ir::ParticleSet& set);
 
   void check_schedule(const ast::ScheduleItem& item);
+  // Storage precision: requests for the whole model and per variable, then
+  // the decision for every variable once all are known (per variable wins).
+  struct PrecisionRequest {
+    ir::Precision precision;
+    Location loc;
+  };
+  void check_precision_request(const ast::ScheduleItem& item);
+  ir::Precision precision_named(const ast::Chain& value);
+  void decide_storage();
+  std::optional<PrecisionRequest> model_precision_;
+  std::map<std::pair<int, int>, PrecisionRequest> variable_precision_;  // (set, var) ->
   ir::SearchChoice search_choice(const ast::Chain& value);
   ir::SolverChoice solver_choice(const ast::Chain& value);
   static std::vector<std::string> var_names(const ir::ParticleSet& set);

@@ -31,6 +31,7 @@ ir::Model Sema::run(const ast::Program& program) {
   for (const ast::Declaration& decl : program.declarations)
     if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
       for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
+  decide_storage();
   if (has_errors()) throw CompileError(diagnostics_);
   return std::move(model_);
 }

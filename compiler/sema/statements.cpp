@@ -321,18 +321,24 @@ ir::Expr Sema::check_assigned_value(const ast::Assignment& a, ir::AssignOp op, T
 }
 
 void Sema::check_schedule(const ast::ScheduleItem& item) {
-  auto named = statement_names_.find(item.statement.name);
+  if (!item.subject || item.subject->member) return check_precision_request(item);
+  const ast::Identifier& statement = item.subject->name;
+  auto named = statement_names_.find(statement.name);
   if (named == statement_names_.end()) {
+    const auto it = names_.find(statement.name);
+    if (it != names_.end() && it->second.kind == Name::Set)
+      fail(statement.loc, quoted(statement.name) + " is a particle set, not a statement",
+           "a set's variables are scheduled one by one, as in " + statement.name +
+               ".v: precision = float; precision = float alone is for the whole model");
     std::vector<std::string> known;
     for (const auto& [name, unused] : statement_names_) known.push_back(name);
-    fail(item.statement.loc,
-         "no statement named " + quoted(item.statement.name) +
-             suggestion(item.statement.name, known),
+    fail(statement.loc,
+         "no statement named " + quoted(statement.name) + suggestion(statement.name, known),
          "name a statement where it is written: force: v[i] += sum(...)");
   }
   ir::Statement& st = model_.stages[named->second.stage].statements[named->second.statement];
   if (st.schedule.loc.end != 0)
-    fail(item.statement.loc, "statement " + quoted(st.name) + " is scheduled twice");
+    fail(statement.loc, "statement " + quoted(st.name) + " is scheduled twice");
   st.schedule.loc = item.loc;
   std::set<std::string> seen;
   for (const ast::ScheduleOption& option : item.options) {
@@ -373,6 +379,10 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       if (auto v = evaluate_constant(value, model_); v && !(*v > 0))
         fail(option.value.loc, "the solver's " + option.key.name + " must be positive");
       (tol ? st.schedule.tolerance : st.schedule.max_iterations) = value;
+    } else if (option.key.name == "precision") {
+      fail(option.key.loc, "precision is chosen per variable, not per statement",
+           "write P.v: precision = float for one variable, or precision = float alone for the "
+           "whole model");
     } else {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
@@ -383,6 +393,88 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
            "gmres, tol = 1e-10, max_iterations = K");
     }
   }
+}
+
+// precision = float | double for the whole model (no subject) or for one
+// variable (P.v), the only option either takes; decide_storage applies them.
+void Sema::check_precision_request(const ast::ScheduleItem& item) {
+  std::pair<int, int> variable{-1, -1};
+  std::string whose = "the whole model";
+  if (item.subject) {
+    const ast::Identifier& member = *item.subject->member;
+    const int set = set_named(item.subject->name);
+    const ir::ParticleSet& s = model_.sets[set];
+    const int var = s.find_var(member.name);
+    if (var < 0)
+      fail(member.loc, "particle set " + quoted(s.name) + " has no variable " +
+                           quoted(member.name) + suggestion(member.name, var_names(s)));
+    whose = s.name + "." + member.name;
+    const Type type = s.vars[var].type;
+    if (type != Type::Real && type != Type::Vec)
+      fail(member.loc, whose + " is " + a_type(type) + ", which has no precision to choose",
+           "only real and vec variables (and p) can be stored as float; ints and bools are "
+           "stored exactly");
+    variable = {set, var};
+  }
+  for (const ast::ScheduleOption& option : item.options) {
+    if (option.key.name != "precision") {
+      static const std::vector<std::string> statement_options = {
+          "search", "skin", "summation", "solver", "tol", "max_iterations"};
+      const bool of_statements = std::find(statement_options.begin(), statement_options.end(),
+                                           option.key.name) != statement_options.end();
+      if (!of_statements)
+        fail(option.key.loc,
+             "unknown schedule option " + quoted(option.key.name) +
+                 suggestion(option.key.name, {"precision"}),
+             whose + " takes precision = float | double");
+      fail(option.key.loc, quoted(option.key.name) + " schedules a statement, not " + whose,
+           "name the statement, as in force: " + option.key.name + " = ...");
+    }
+    const PrecisionRequest request{precision_named(option.value), option.loc};
+    const PrecisionRequest* earlier = nullptr;
+    if (!item.subject) {
+      if (model_precision_) earlier = &*model_precision_;
+      else model_precision_ = request;
+    } else if (const auto [it, fresh] = variable_precision_.emplace(variable, request); !fresh) {
+      earlier = &it->second;
+    }
+    if (earlier)
+      fail(option.key.loc, "the precision of " + whose + " is chosen twice",
+           "first on line " + std::to_string(file_.line_column(earlier->loc.begin).line));
+  }
+}
+
+ir::Precision Sema::precision_named(const ast::Chain& value) {
+  const ast::Operand* sole = ast::sole_operand(value);
+  const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+  if (id && id->name == "float") return ir::Precision::Float;
+  if (id && id->name == "double") return ir::Precision::Double;
+  fail(value.loc, "precision is float or double, not " + quoted(source_text(value.loc)),
+       "float stores each number in 32 bits, double in 64; both compute in double");
+}
+
+// The storage of every real and vec variable, p included: its own schedule
+// entry, else the whole model's, else double; with the reason, for --explain.
+void Sema::decide_storage() {
+  for (std::size_t s = 0; s < model_.sets.size(); ++s)
+    for (std::size_t v = 0; v < model_.sets[s].vars.size(); ++v) {
+      ir::Variable& var = model_.sets[s].vars[v];
+      if (var.type != Type::Real && var.type != Type::Vec) continue;
+      const auto own = variable_precision_.find({static_cast<int>(s), static_cast<int>(v)});
+      const PrecisionRequest* chosen = own != variable_precision_.end() ? &own->second
+                                       : model_precision_               ? &*model_precision_
+                                                                        : nullptr;
+      if (!chosen) {
+        var.storage_reason = "double, the default";
+        continue;
+      }
+      var.storage = chosen->precision;
+      var.storage_reason =
+          std::string(var.storage == ir::Precision::Float ? "float" : "double") +
+          ", as the schedule says for " +
+          (own != variable_precision_.end() ? "this variable" : "the whole model") + " (line " +
+          std::to_string(file_.line_column(chosen->loc.begin).line) + ")";
+    }
 }
 
 ir::SolverChoice Sema::solver_choice(const ast::Chain& value) {
