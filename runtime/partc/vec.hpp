@@ -19,9 +19,11 @@
 // - == compares components with ==, so a Vec holding a NaN never equals itself.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace partc {
 
@@ -108,8 +110,21 @@ T dot(const Vec<D, T>& a, const Vec<D, T>& b) {
 }
 template <int D, class T>
 T squared_norm(const Vec<D, T>& a) { return dot(a, a); }
+// sqrt(dot(a, a)), except where the squares underflow (|a| below about
+// 1.5e-154, where particles 1e-162 apart would look coincident) or overflow
+// (above 1.3e154): only there is each component scaled by the largest first.
 template <int D, class T>
-T norm(const Vec<D, T>& a) { return std::sqrt(squared_norm(a)); }
+T norm(const Vec<D, T>& a) {
+  const T s = squared_norm(a);
+  if (s >= std::numeric_limits<T>::min() && s <= std::numeric_limits<T>::max()) return std::sqrt(s);
+  if (std::isnan(s)) return s;
+  T largest = 0;
+  for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(a[k]));
+  if (largest == 0 || std::isinf(largest)) return largest;
+  T scaled = 0;
+  for (int k = 0; k < D; ++k) scaled += (a[k] / largest) * (a[k] / largest);
+  return largest * std::sqrt(scaled);
+}
 
 // The cross product in 3D; in 2D the z-component of the 3D cross product of
 // (a, 0) and (b, 0), a scalar (a torque, a signed area).

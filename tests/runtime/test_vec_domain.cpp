@@ -78,6 +78,21 @@ TEST_CASE("Vec division divides rather than multiplying by the reciprocal", "[ve
   CHECK((Vec<1>{{3.0}} / 10.0)[0] == 0.3);
 }
 
+TEST_CASE("norm is exact to rounding where the squares would underflow or overflow", "[vec]") {
+  using partc::Vec;
+  CHECK(partc::norm(Vec<2>{{1e-162, 0}}) == 1e-162);  // its square is 0
+  CHECK(partc::norm(Vec<2>{{0, -1e-320}}) == 1e-320);  // a denormal component
+  CHECK(partc::norm(Vec<2>{{3e-170, 4e-170}}) == Approx(5e-170).epsilon(1e-15));
+  CHECK(partc::norm(Vec<3>{{1e-160, 1e-160, 1e-160}}) ==
+        Approx(std::sqrt(3.0) * 1e-160).epsilon(1e-15));  // square denormal: 6e-6 off
+  CHECK(partc::norm(Vec<2>{{3e200, -4e200}}) == Approx(5e200).epsilon(1e-15));
+  CHECK(partc::norm(Vec<2>{{0, 0}}) == 0);
+  CHECK(std::isinf(partc::norm(Vec<2>{{INFINITY, 1}})));
+  CHECK(std::isnan(partc::norm(Vec<2>{{NAN, 1}})));
+  CHECK(std::isnan(partc::norm(Vec<2>{{INFINITY, NAN}})));
+  CHECK(partc::norm(Vec<2>{{0.6, 0.8}}) == std::sqrt(0.6 * 0.6 + 0.8 * 0.8));  // the usual path
+}
+
 TEST_CASE("Domain::length is hi - lo", "[domain]") {
   const Domain<2> d{{{-1.0, 0.5}}, {{3.0, 0.75}}, {{true, false}}};
   CHECK(d.length() == Vec<2>{{4.0, 0.25}});
