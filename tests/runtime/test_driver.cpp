@@ -289,10 +289,14 @@ TEST_CASE("driver: a NaN is exit 3 with variable, id and step, and no --output",
   const Run result = run({"--set", "nan_at=2", "--steps", "5", "--output", output});
   CHECK(result.status == 3);
   CHECK(result.out.empty());
+  const std::string kept = path_in("nan", "out.last-finite.csv");
   CHECK(result.err ==
-        "toy: error: numerical blow-up: variable 'e' of particle id 3 is nan at step 2 (set P)\n");
+        "toy: error: numerical blow-up: variable 'e' of particle id 3 is nan at step 2 (set P)\n"
+        "toy: note: the last state found finite, at step 1, is in " +
+            kept + " (--input reads it back)\n");
   CHECK_FALSE(fs::exists(output));
   CHECK_FALSE(fs::exists(output + ".tmp"));
+  CHECK(fs::exists(kept));
 
   // Checking every 4 steps of 3 still checks the final state before writing it.
   const Run sparse =
