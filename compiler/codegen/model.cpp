@@ -357,9 +357,11 @@ void ModelEmitter::load() {
     names.push_back(name);
     linef("{}.clear();", set_member_[s]);
     linef("if (auto t = tables.find(\"{}\"); t != tables.end())", name);
+    const bool faces = Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open);
     linef(
-        "partc::load_set({0}, t->second, domain_, [this](std::size_t i) {{ initialise_{1}(i); }});",
-        set_member_[s], name);
+        "partc::load_set({0}, t->second, domain_, {2}[this](std::size_t i) {{ initialise_{1}(i); "
+        "}});",
+        set_member_[s], name, faces ? "faces_, " : "");
     linef("++{};", epoch_[s]);
   }
   line("for (const auto& [name, table] : tables)");

@@ -6,7 +6,8 @@
 // - shown: a number for a message, in 6 significant digits.
 // - load_set: a particle set from a CSV table, with the model's declared
 //   initial values for the variables the table lacks, and positions wrapped
-//   into the periodic domain (at their precision: Domain::wrap_into).
+//   into the periodic domain (at their precision: Domain::wrap_into); with
+//   reflecting or open faces, a position outside them is an error.
 //
 // Surprises: parse_param accepts the whole text or throws (no "10abc");
 // bools are true/false/1/0.
@@ -23,6 +24,7 @@
 #include "partc/csv.hpp"
 #include "partc/domain.hpp"
 #include "partc/errors.hpp"
+#include "partc/faces.hpp"
 
 namespace partc {
 
@@ -84,6 +86,29 @@ void load_set(Set& set, const CsvTable& table, const Domain<Set::dim>& domain,
               Initialise&& initialise) {
   load_set(table, set, initialise);
   for (auto& x : set.positions()) domain.wrap_into(x, widen(x));
+}
+
+// The same for a model with reflecting or open faces, refusing a row whose
+// position is outside them: [lo, hi] along a reflecting axis, [lo, hi) along
+// an open one. The first step would otherwise fold such a particle back in,
+// or remove it, without a word.
+template <class Set, class Initialise>
+void load_set(Set& set, const CsvTable& table, const Domain<Set::dim>& domain,
+              const Faces<Set::dim>& faces, Initialise&& initialise) {
+  for (int k = 0; k < Set::dim; ++k) {
+    const int column = table.column("p_" + std::to_string(k));
+    if (column < 0 || !(faces.reflect[k] || faces.open[k])) continue;  // load_set says what is missing
+    const double lo = faces.lo[k], hi = faces.hi[k];
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+      const double x = table.rows[r][static_cast<std::size_t>(column)];
+      if (x >= lo && (faces.open[k] ? x < hi : x <= hi)) continue;
+      throw table.error_at(table.lines[r], static_cast<std::size_t>(column),
+                           "p_" + std::to_string(k) + " = " + shown(x) + " is outside the " +
+                               (faces.open[k] ? "open" : "reflecting") + " faces at " + shown(lo) +
+                               " and " + shown(hi) + (faces.open[k] ? " (lo <= p < hi)" : ""));
+    }
+  }
+  load_set(set, table, domain, initialise);
 }
 
 }  // namespace partc

@@ -278,6 +278,12 @@ if(PART STREQUAL "rejected")
   bad(missing_vec_component 1:23 "missing column 'v_1' (a vec needs all its components)" "${H},v_0,v_2"
       "${H},v_0,v_2\n0,0,0,0,1,1\n")
   bad(unknown_column 1:16 "unknown column 'x'; ${known}" "${H},x" "${H},x\n0,0,0,0,1\n")
+
+  # y reflects at 0 and 1: a particle outside would be folded in unseen.
+  bad(outside_reflecting_face 3:7 "p_1 = 1.5 is outside the reflecting faces at 0 and 1" "1,0.5,1.5,0"
+      "${H}\n0,0.5,0.5,0\n1,0.5,1.5,0\n")
+  bad(below_reflecting_face 2:7 "p_1 = -1e-300 is outside the reflecting faces at 0 and 1"
+      "0,0.5,-1e-300,0" "${H}\n0,0.5,-1e-300,0\n")
 endif()
 
 if(PART STREQUAL "accepted")
@@ -296,6 +302,8 @@ if(PART STREQUAL "accepted")
   # Subnormals are read as they are (1e-400 is refused: it would read as 0).
   good(subnormals "${H}\n0,5e-324,1e-310,0.5\n" "0,5e-324,1e-310,0.5,0,0,0,0,0\n")
   # x is periodic (wrapped), z unbounded (anything finite goes).
+  good(on_reflecting_faces "${H}\n0,0.5,0,0\n1,0.5,1,0\n"
+       "0,0.5,0,0,0,0,0,0,0\n1,0.5,1,0,0,0,0,0,0\n")
   good(wrapped_and_unbounded "${H}\n0,1.25,0.5,1e300\n1,-0.25,0.5,-1e300\n"
        "0,0.25,0.5,1e+300,0,0,0,0,0\n1,0.75,0.5,-1e+300,0,0,0,0,0\n")
   good(largest_id "${H},hits,moving\n9007199254740991,0,0,0,-9007199254740992,1\n"
