@@ -137,6 +137,10 @@ struct Type {
 
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : "";
+  if (argc > 2 || dir.rfind("-", 0) == 0) {
+    std::printf("usage: bench_example_solves [DIR]  (DIR: also write the systems and figures)\n");
+    return dir == "--help" || dir == "-h" ? 0 : 2;
+  }
   std::FILE* figures_file = nullptr;
   if (!dir.empty() && !(figures_file = std::fopen((dir + "/partc.txt").c_str(), "w"))) {
     std::fprintf(stderr, "bench_example_solves: cannot write %s/partc.txt\n", dir.c_str());
