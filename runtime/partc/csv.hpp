@@ -328,13 +328,7 @@ struct CsvTable {
   // read again from a regular file: a table does not keep its text, errors
   // are rare.
   InputError error_at(std::size_t line, std::size_t field, const std::string& message) const {
-    std::string text;
-    if (!texts.empty()) {
-      if (line >= 1 && line <= texts.size()) text = texts[line - 1];
-    } else {
-      detail::CsvLineReader reader(path);
-      while (reader.number() < line && reader.next(text)) continue;
-    }
+    const std::string text = line_text(line);
     const auto fields = detail::split_csv_line(text);
     const std::size_t column = field < fields.size() ? fields[field].offset + 1 : text.size() + 1;
     return detail::csv_error(path, line, column, text, message);
@@ -342,6 +336,13 @@ struct CsvTable {
 
   // The text of field `field` of file line `line`, as written (read again as error_at does).
   std::string field_text(std::size_t line, std::size_t field) const {
+    const std::string text = line_text(line);
+    const auto fields = detail::split_csv_line(text);
+    return field < fields.size() ? std::string(fields[field].text) : std::string();
+  }
+
+  // File line `line` (1-based): kept, or read again.
+  std::string line_text(std::size_t line) const {
     std::string text;
     if (!texts.empty()) {
       if (line >= 1 && line <= texts.size()) text = texts[line - 1];
@@ -349,8 +350,7 @@ struct CsvTable {
       detail::CsvLineReader reader(path);
       while (reader.number() < line && reader.next(text)) continue;
     }
-    const auto fields = detail::split_csv_line(text);
-    return field < fields.size() ? std::string(fields[field].text) : std::string();
+    return text;
   }
 
  private:
