@@ -108,14 +108,15 @@ class CoincidentTerms {
   Singularity singular(const Expr& e, const ArgFacts& args) {
     if (!e || ir::as<ir::Accumulate>(e)) return {};  // an inner sum's dx is its own
     if (auto b = ir::as<ir::Binary>(e)) {
-      if (b->op == ir::BinaryOp::Div && vanishes(b->rhs, args)) return {b->rhs.get(), "divides by"};
+      if (b->op == ir::BinaryOp::Div && vanishes(b->rhs, args))
+        return {b->rhs.get(), "divides by", {}, {}};
       return first(singular(b->lhs, args), [&] { return singular(b->rhs, args); });
     }
     if (auto c = ir::as<ir::Call>(e)) {
       if (c->fn == ir::Function::Pow && sign(c->args[1]) < 0 && vanishes(c->args[0], args))
-        return {c->args[0].get(), "takes a negative power of"};
+        return {c->args[0].get(), "takes a negative power of", {}, {}};
       if (c->fn == ir::Function::Log && vanishes(c->args[0], args))
-        return {c->args[0].get(), "takes the log of"};
+        return {c->args[0].get(), "takes the log of", {}, {}};
       for (const Expr& a : c->args)
         if (Singularity s = singular(a, args); s.at) return s;
       return {};

@@ -236,9 +236,12 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
                                std::to_string(static_cast<long long>(*value)) + " particles");
     set.initial_count = count;
   });
-  set.vars.push_back({"p", Type::Vec, nullptr, true, decl.name.loc});
-  set.vars.push_back({"id", Type::Int, nullptr, true, decl.name.loc});
-  set.vars.push_back({"alive", Type::Bool, nullptr, true, decl.name.loc});
+  const auto builtin = [&](const char* name, Type type) {
+    return ir::Variable{name, type, nullptr, true, decl.name.loc, false, ir::Precision::Double, {}};
+  };
+  set.vars.push_back(builtin("p", Type::Vec));
+  set.vars.push_back(builtin("id", Type::Int));
+  set.vars.push_back(builtin("alive", Type::Bool));
   const int set_index = static_cast<int>(model_.sets.size());
   for (const ast::VarDecl& var : decl.vars) {
     guarded([&] {
@@ -262,7 +265,8 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
         if (var.mirrored && type != Type::Vec)
           fail(var.name.loc, "only a vec can be mirrored: " + quoted(var.name.name) + " is " +
                                  a_type(type));
-        set.vars.push_back({var.name.name, type, initial, false, var.loc, var.mirrored});
+        set.vars.push_back({var.name.name, type, initial, false, var.loc, var.mirrored,
+                            ir::Precision::Double, {}});
       });
     });
   }
