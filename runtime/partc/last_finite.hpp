@@ -3,7 +3,7 @@
 // which --input reads back: resume with a smaller time step, or look at the
 // particles just before the blow-up.
 //
-//   LastFinite kept(model);            // after init or load
+//   LastFinite kept(model);            // holds nothing until the first take
 //   kept.take(model, step);            // after each check that passed
 //   kept.write([](set) { return path; })  // on a blow-up
 //
@@ -32,7 +32,7 @@ class LastFinite {
   template <class Model>
   explicit LastFinite(const Model& model) {
     model.for_each_set([&](const char* name, const auto& set) {
-      sets_.push_back(std::make_unique<Copy<std::decay_t<decltype(set)>>>(name, set));
+      sets_.push_back(std::make_unique<Copy<std::decay_t<decltype(set)>>>(name));
     });
   }
 
@@ -69,7 +69,7 @@ class LastFinite {
   };
   template <class Set>
   struct Copy final : Kept {
-    Copy(const char* set_name, const Set& initial) : Kept(set_name), set(initial) {}
+    explicit Copy(const char* set_name) : Kept(set_name) {}  // empty until the first take
     void write(const std::string& path) const override { write_csv(path, set); }
     Set set;
   };
