@@ -6,7 +6,8 @@
 #       an INTERFACE library whose include path holds <file>.hpp, the
 #       generated model class, for C++ code that drives the model itself.
 #
-# Both regenerate the C++ whenever the .part file or partc changes.
+# Both regenerate the C++ whenever the .part file, a module it uses (partc
+# writes a depfile) or partc changes.
 # PARTC_EXECUTABLE must name partc (a path or a generator expression).
 
 function(_partc_generate part_file out_file extra_flags)
@@ -15,8 +16,9 @@ function(_partc_generate part_file out_file extra_flags)
   file(MAKE_DIRECTORY ${out_dir})
   add_custom_command(
     OUTPUT ${out_file}
-    COMMAND ${PARTC_EXECUTABLE} ${part_abs} -o ${out_file} ${extra_flags}
+    COMMAND ${PARTC_EXECUTABLE} ${part_abs} -o ${out_file} --depfile ${out_file}.d ${extra_flags}
     DEPENDS ${part_abs} ${PARTC_EXECUTABLE_DEPENDS}
+    DEPFILE ${out_file}.d
     COMMENT "partc ${part_file}"
     VERBATIM)
 endfunction()

@@ -52,24 +52,26 @@ std::string habit_note(grammar::Iterator it, grammar::Iterator end) {
 
 }  // namespace
 
-ast::Program parse_program(const SourceFile& file) {
-  check_source_text(file);
+ast::Program parse_program(const SourceFile& file, int segment) {
+  check_source_text(file, segment);
   const std::string& text = file.text();
+  // Offsets count from the start of all the text, so a location names its file.
   const grammar::Iterator begin = text.begin();
-  grammar::Iterator first = text.begin();
+  grammar::Iterator first = text.begin() + file.extent(segment).begin;
+  const grammar::Iterator last = text.begin() + file.extent(segment).end;
   ast::Program program;
   try {
     namespace x3 = boost::spirit::x3;
-    x3::phrase_parse(first, text.end(),
+    x3::phrase_parse(first, last,
                      x3::with<grammar::source_begin_tag>(begin)[grammar::program], grammar::skipper,
                      program.declarations);
   } catch (const boost::spirit::x3::expectation_failure<grammar::Iterator>& failure) {
-    const grammar::Iterator at = skip_blanks(failure.where(), text.end());
-    const auto [found, length] = token_at(at, text.end());
+    const grammar::Iterator at = skip_blanks(failure.where(), last);
+    const auto [found, length] = token_at(at, last);
     const auto offset = static_cast<std::uint32_t>(at - begin);
     throw CompileError(Diagnostic{{offset, offset + length},
                                   "expected " + failure.which() + ", found " + found,
-                                  habit_note(at, text.end())});
+                                  habit_note(at, last)});
   }
   return program;
 }

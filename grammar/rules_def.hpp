@@ -174,6 +174,19 @@ struct fn_param_id : locate {};
 struct particles_decl_id : locate {};
 struct stage_block_id : locate {};
 struct declaration_id : locate {};
+struct module_decl_id : locate {};
+struct effect_decl_id : locate {};
+struct effect_param_id : locate {};
+struct effect_item_id : locate {};
+struct owns_item_id : locate {};
+struct access_item_id : locate {};
+struct provides_item_id : locate {};
+struct slots_item_id : locate {};
+struct at_item_id : locate {};
+struct use_decl_id : locate {};
+struct use_argument_id : locate {};
+struct order_decl_id : locate {};
+struct end_of_effect_id : locate {};
 struct program_id : locate {};
 struct end_of_block_id : locate {};
 struct end_of_vars_id : locate {};
@@ -248,12 +261,34 @@ x3::rule<fn_param_id, ast::FnParam> const fn_param = "a parameter like r: real";
 x3::rule<particles_decl_id, ast::ParticlesDecl> const particles_decl = "a particles declaration";
 x3::rule<stage_block_id, ast::StageBlock> const stage_block = "an init, step or stage block";
 x3::rule<declaration_id, ast::Declaration> const declaration = "a declaration";
+x3::rule<module_decl_id, ast::ModuleDecl> const module_decl = "a module declaration";
+x3::rule<class module_decl_text_id, ast::ModuleDecl> const module_decl_text =
+    "a module declaration";
+x3::rule<class dotted_name_id, std::vector<ast::Identifier>> const dotted_name =
+    "a module name like pair.lj";
+x3::rule<effect_decl_id, ast::EffectDecl> const effect_decl = "an effect declaration";
+x3::rule<effect_param_id, ast::EffectParam> const effect_param =
+    "a parameter like eps: real = 1";
+x3::rule<effect_item_id, ast::EffectItem> const effect_item = "an effect item";
+x3::rule<owns_item_id, ast::OwnsItem> const owns_item = "an owns declaration";
+x3::rule<access_item_id, ast::AccessItem> const access_item =
+    "a reads, sets or contributes declaration";
+x3::rule<provides_item_id, ast::ProvidesItem> const provides_item = "a provides declaration";
+x3::rule<slots_item_id, ast::SlotsItem> const slots_item = "a slots or prime declaration";
+x3::rule<at_item_id, ast::AtItem> const at_item = "a statement at a slot, like at force: f[i] += ...";
+x3::rule<end_of_effect_id> const end_of_effect =
+    "an effect item (owns, reads, sets, contributes, provides, slots, prime, at, const, "
+    "timestep) or '}'";
+x3::rule<use_decl_id, ast::UseDecl> const use_decl = "a use declaration";
+x3::rule<use_argument_id, ast::UseArgument> const use_argument = "an argument like eps = 1.2";
+x3::rule<order_decl_id, ast::OrderDecl> const order_decl = "an order declaration";
+x3::rule<class order_decl_text_id, ast::OrderDecl> const order_decl_text = "an order declaration";
 x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
 x3::rule<end_of_vars_id> const end_of_vars = "a variable declaration like v: vec = 0, or '}'";
 x3::rule<end_of_input_id> const end_of_input =
     "a declaration (model, dim, domain, param, const, observable, timestep, output, fn, "
-    "particles, init, step or schedule)";
+    "particles, init, step, stage, schedule, use, order, module or effect)";
 
 // Semantic actions fill single-member nodes. X3 calls no on_success for a
 // rule whose definition holds an action, so each such rule (`*_text`) is
@@ -481,12 +516,68 @@ auto const schedule_item_def =
 auto const schedule_subject_def = identifier >> -('.' > identifier);
 auto const schedule_option_def = identifier > '=' > expression;
 
+// Modules and scenes. Their words (module, effect, use, on, as, owns, ...)
+// are not reserved: each can begin only where no name can, so models may
+// keep using them as names.
+// module_decl = "module" , dotted_name ;
+// dotted_name = identifier , { "." , identifier } ;
+auto const set_module_name = [](auto& ctx) { _val(ctx).name = std::move(_attr(ctx)); };
+auto const module_decl_def = module_decl_text;
+auto const module_decl_text_def = (keyword("module") > dotted_name)[set_module_name];
+auto const dotted_name_def = identifier % '.';
+
+// effect_decl  = "effect" , identifier , "(" , [ effect_param , { "," , effect_param } ] , ")" ,
+//                "on" , identifier , { "," , identifier } , "{" , { effect_item } , "}" ;
+// effect_param = [ "const" ] , identifier , ":" , identifier , "=" , expression ;
+auto const effect_decl_def = keyword("effect") > identifier > '(' > -(effect_param % ',') > ')' >
+                             keyword("on") > (identifier % ',') > '{' > *effect_item >
+                             end_of_effect;
+auto const end_of_effect_def = lit('}');
+auto const effect_param_def =
+    x3::matches[keyword("const")] >> identifier > ':' > identifier > '=' > expression;
+
+// effect_item   = owns_item | access_item | provides_item | slots_item | at_item
+//               | const_decl | timestep_decl ;
+// owns_item     = "owns" , [ "local" ] , [ "mirrored" ] , identifier , ":" , identifier ,
+//                 [ "=" , expression ] , [ "channel" ] ;
+// access_item   = ( "reads" | "sets" | "contributes" ) , identifier , ":" , identifier ;
+// provides_item = "provides" , identifier , ":" , identifier ;
+// slots_item    = ( "slots" | "prime" ) , identifier , { "," , identifier } ;
+// at_item       = "at" , identifier , ":" , assignment ;
+auto const effect_item_def =
+    owns_item | access_item | provides_item | slots_item | at_item | const_decl | timestep_decl;
+auto const owns_item_def = keyword("owns") > x3::matches[keyword("local")] >
+                           x3::matches[keyword("mirrored")] > identifier > ':' >
+                           identifier > -('=' > expression) > x3::matches[keyword("channel")];
+auto const access_item_def =
+    (keyword_string("reads") | keyword_string("sets") | keyword_string("contributes")) >
+    identifier > ':' > identifier;
+auto const provides_item_def = keyword("provides") > identifier > ':' > identifier;
+auto const slots_item_def =
+    (keyword_string("slots") | keyword_string("prime")) > (identifier % ',');
+auto const at_item_def = keyword("at") > identifier > ':' > assignment;
+
+// use_decl = "use" , dotted_name , [ "(" , [ use_argument , { "," , use_argument } ] , ")" ] ,
+//            "on" , identifier , { "," , identifier } , [ "as" , identifier ] ;
+// use_argument = identifier , "=" , expression ;
+auto const use_decl_def = keyword("use") > dotted_name >
+                          -('(' > -(use_argument % ',') > ')') > keyword("on") >
+                          (identifier % ',') > -(keyword("as") > identifier);
+auto const use_argument_def = identifier > '=' > expression;
+
+// order_decl = "order" , identifier , { "," , identifier } ;
+auto const set_instances = [](auto& ctx) { _val(ctx).instances = std::move(_attr(ctx)); };
+auto const order_decl_def = order_decl_text;
+auto const order_decl_text_def = (keyword("order") > (identifier % ','))[set_instances];
+
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
 //             | observable_decl | timestep_decl | output_decl
-//             | fn_decl | particles_decl | stage_block | schedule_block ;
+//             | fn_decl | particles_decl | stage_block | schedule_block
+//             | module_decl | effect_decl | use_decl | order_decl ;
 auto const declaration_def = model_decl | dim_decl | domain_decl | param_decl | const_decl |
                              observable_decl | timestep_decl | output_decl | fn_decl |
-                             particles_decl | stage_block | schedule_block;
+                             particles_decl | stage_block | schedule_block | module_decl |
+                             effect_decl | use_decl | order_decl;
 
 // program = { declaration } ;
 auto const program_def = *declaration > end_of_input;
@@ -506,7 +597,10 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
                     schedule_block_text, schedule_item, schedule_option, end_of_schedule, var_decl, particles_decl,
                     end_of_vars, stage_block, end_of_block, declaration, program, end_of_input)
 // One BOOST_SPIRIT_DEFINE takes a bounded number of rules (Boost.Preprocessor's limit).
-BOOST_SPIRIT_DEFINE(boundary_clause, schedule_subject)
+BOOST_SPIRIT_DEFINE(boundary_clause, schedule_subject, module_decl, module_decl_text, dotted_name,
+                    effect_decl, end_of_effect, effect_param, effect_item, owns_item, access_item,
+                    provides_item, slots_item, at_item, use_decl, use_argument, order_decl,
+                    order_decl_text)
 
 // Whitespace and comments from '#' to the end of the line.
 auto const skipper = x3::space | lexeme['#' >> *(char_ - x3::eol)];

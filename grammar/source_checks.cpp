@@ -47,11 +47,12 @@ bool word_char(char c) {
 
 }  // namespace
 
-void check_source_text(const SourceFile& file) {
+void check_source_text(const SourceFile& file, int segment) {
   const std::string& text = file.text();
+  const Location extent = file.extent(segment);
   int depth = 0;   // of ( and [
   int prefix = 0;  // consecutive prefix operators or bars, blanks between them
-  for (std::size_t k = 0; k < text.size(); ++k) {
+  for (std::size_t k = extent.begin; k < extent.end; ++k) {
     const char c = text[k];
     if (c == '#') {
       while (k < text.size() && text[k] != '\n') ++k;  // comments may hold any bytes

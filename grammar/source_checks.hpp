@@ -12,7 +12,7 @@ namespace partc {
 constexpr int kMaxNesting = 256;
 
 // Throws CompileError at the first byte outside ASCII that is not in a
-// comment, or where nesting goes beyond kMaxNesting.
-void check_source_text(const SourceFile& file);
+// comment, or where nesting goes beyond kMaxNesting, in one file of `file`.
+void check_source_text(const SourceFile& file, int segment);
 
 }  // namespace partc

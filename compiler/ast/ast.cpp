@@ -37,3 +37,13 @@ Location location_of(const Argument& argument) {
 }
 
 }  // namespace partc::ast
+
+namespace partc::ast {
+
+std::string dotted(const std::vector<Identifier>& parts) {
+  std::string out;
+  for (const Identifier& part : parts) out += (out.empty() ? "" : ".") + part.name;
+  return out;
+}
+
+}  // namespace partc::ast

@@ -90,6 +90,9 @@ struct Argument : x3::variant<LabelBinding, Chain> {
 struct Call : Located {
   Identifier callee;
   std::vector<Argument> args;
+  // Set by scene instantiation on uniform() and normal() inside an effect:
+  // the instance whose random stream the draw belongs to.
+  std::string random_key = {};
 };
 
 // v[i] (a particle variable) or e_kin (an observable)
@@ -98,12 +101,20 @@ struct Target : Located {
   boost::optional<Identifier> label;
 };
 
+// Where a statement instantiated from an effect came from: the instance
+// and the statement of the module, one entry per term merged into it.
+struct Origin {
+  std::string effect;
+  Location loc;
+};
+
 // target op value, op one of = += -= *= /=
 struct Assignment : Located {
   boost::optional<Identifier> name;  // `force: v[i] += ...`, for the schedule
   Target target;
   std::string op;
   Chain value;
+  std::vector<Origin> origins = {};  // empty when written in the model itself
 };
 
 // solve w[i]: operator = rhs, the operator linear in w (sums of
@@ -178,6 +189,7 @@ struct VarDecl : Located {
   Identifier name;
   Identifier type;
   boost::optional<Chain> value;
+  bool effect_owned = false;  // set by scene instantiation for an effect's `owns`
 };
 struct ParticlesDecl : Located {
   Identifier name;
@@ -200,6 +212,9 @@ struct StageBlock : Located {
   std::string kind;
   std::vector<Identifier> words;
   std::vector<BlockStatement> body;
+  // Set by scene instantiation on an integrator's primed slots: an init
+  // block that runs after a state is loaded from files too.
+  bool also_after_load = false;
 };
 
 // schedule { force: search = kd_tree, skin = 0.3  P.v: precision = float }:
@@ -221,9 +236,82 @@ struct ScheduleBlock : Located {
   std::vector<ScheduleItem> items;
 };
 
+// Modules and scenes. `module pair.lj` names a module file; a module holds
+// functions and one effect; a scene `use`s effects on its particle sets.
+struct ModuleDecl : Located {
+  std::vector<Identifier> name;  // pair.lj
+};
+// An effect's parameter: `eps: real = 1`, or `const rc: real = 2.5` (folded).
+struct EffectParam : Located {
+  bool is_const = false;
+  Identifier name;
+  Identifier type;
+  Chain value;
+};
+// owns [local] [mirrored] v: vec = 0 [channel]: a variable the effect
+// declares on its set; a local one is the instance's own (named lj_u for
+// instance lj), which no other effect sees.
+struct OwnsItem : Located {
+  bool local = false;
+  bool mirrored = false;
+  Identifier name;
+  Identifier type;
+  boost::optional<Chain> value;
+  bool channel = false;
+};
+// reads x: real, sets v: vec, contributes f: vec: a variable another owns.
+struct AccessItem : Located {
+  std::string kind;
+  Identifier name;
+  Identifier type;
+};
+// provides e_lj: real: an observable the effect computes, kept if used.
+struct ProvidesItem : Located {
+  Identifier name;
+  Identifier type;
+};
+// slots kick, drift, force (an integrator's step, in order), or prime
+// force (slots that also run once after init).
+struct SlotsItem : Located {
+  std::string kind;
+  std::vector<Identifier> names;
+};
+// at force: f[i] += ...: a statement placed at a slot of the step.
+struct AtItem : Located {
+  Identifier slot;
+  Assignment statement;
+};
+struct EffectItem : x3::variant<OwnsItem, AccessItem, ProvidesItem, SlotsItem, AtItem, ConstDecl,
+                                TimestepDecl> {
+  using base_type::base_type;
+  using base_type::operator=;
+};
+struct EffectDecl : Located {
+  Identifier name;
+  std::vector<EffectParam> params;
+  std::vector<Identifier> sets;  // the formal sets, `on P` or `on P, Q`
+  std::vector<EffectItem> items;
+};
+// use pair.lj(eps = 1.2) on A as lj_a
+struct UseArgument : Located {
+  Identifier name;
+  Chain value;
+};
+struct UseDecl : Located {
+  std::vector<Identifier> module;
+  std::vector<UseArgument> args;
+  std::vector<Identifier> sets;
+  boost::optional<Identifier> alias;
+};
+// order wall_a, wall_b: writers of one variable at one slot, in this order.
+struct OrderDecl : Located {
+  std::vector<Identifier> instances;
+};
+
 struct Declaration
     : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, ObservableDecl,
-                  TimestepDecl, OutputDecl, FnDecl, ParticlesDecl, StageBlock, ScheduleBlock> {
+                  TimestepDecl, OutputDecl, FnDecl, ParticlesDecl, StageBlock, ScheduleBlock,
+                  ModuleDecl, EffectDecl, UseDecl, OrderDecl> {
   using base_type::base_type;
   using base_type::operator=;
 };
@@ -231,6 +319,9 @@ struct Declaration
 struct Program {
   std::vector<Declaration> declarations;
 };
+
+// "pair.lj" for the parts of a dotted name.
+std::string dotted(const std::vector<Identifier>& parts);
 
 // The single operand a chain is made of, looking through the nesting of
 // precedence levels and parentheses ("j", "(j)"); null when the chain

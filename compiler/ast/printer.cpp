@@ -104,12 +104,14 @@ struct Printer {
              (v.value ? " " + (*this)(*v.value) : "") + ") " + at(v);
     return out;
   }
+  std::string assignment(const Assignment& a) const {
+    return "(" + (a.name ? a.name->name + ": " : std::string()) + a.op + " " + (*this)(a.target) +
+           " " + (*this)(a.value) + ") " + at(a);
+  }
   std::string statements(const std::vector<BlockStatement>& body, const std::string& indent) const {
     std::string out;
     for (const BlockStatement& s : body) {
-      if (auto a = boost::get<Assignment>(&s))
-        out += "\n" + indent + "(" + (a->name ? a->name->name + ": " : std::string()) + a->op +
-               " " + (*this)(a->target) + " " + (*this)(a->value) + ") " + at(*a);
+      if (auto a = boost::get<Assignment>(&s)) out += "\n" + indent + assignment(*a);
       if (auto solve = boost::get<SolveStatement>(&s))
         out += "\n" + indent + "(" + (solve->name ? solve->name->name + ": " : std::string()) +
                "solve " + (*this)(solve->unknown) + " " + (*this)(solve->lhs) + " " +
@@ -138,6 +140,51 @@ struct Printer {
       out += ") " + at(item);
     }
     return out;
+  }
+  static std::string names(const std::vector<Identifier>& list, const char* separator) {
+    std::string out;
+    for (const Identifier& name : list) out += (out.empty() ? "" : separator) + name.name;
+    return out;
+  }
+  std::string operator()(const ModuleDecl& n) const {
+    return "(module " + dotted(n.name) + ") " + at(n);
+  }
+  std::string operator()(const OwnsItem& n) const {
+    return std::string("(owns ") + (n.local ? "local " : "") + (n.mirrored ? "mirrored " : "") + n.name.name + " " +
+           n.type.name + (n.value ? " " + (*this)(*n.value) : "") + (n.channel ? " channel" : "") +
+           ") " + at(n);
+  }
+  std::string operator()(const AccessItem& n) const {
+    return "(" + n.kind + " " + n.name.name + " " + n.type.name + ") " + at(n);
+  }
+  std::string operator()(const ProvidesItem& n) const {
+    return "(provides " + n.name.name + " " + n.type.name + ") " + at(n);
+  }
+  std::string operator()(const SlotsItem& n) const {
+    return "(" + n.kind + " " + names(n.names, " ") + ") " + at(n);
+  }
+  std::string operator()(const AtItem& n) const {
+    return "(at " + n.slot.name + " " + assignment(n.statement) + ") " + at(n);
+  }
+  std::string operator()(const EffectDecl& n) const {
+    std::string out = "(effect " + n.name.name + " (";
+    for (std::size_t k = 0; k < n.params.size(); ++k)
+      out += (k ? " " : "") + std::string(n.params[k].is_const ? "const " : "") +
+             n.params[k].name.name + ":" + n.params[k].type.name + " " + (*this)(n.params[k].value);
+    out += ") (on " + names(n.sets, " ") + ")) " + at(n);
+    for (const EffectItem& item : n.items) out += "\n  " + boost::apply_visitor(*this, item);
+    return out;
+  }
+  std::string operator()(const UseDecl& n) const {
+    std::string out = "(use " + dotted(n.module) + " (";
+    for (std::size_t k = 0; k < n.args.size(); ++k)
+      out += (k ? " " : "") + n.args[k].name.name + "=" + (*this)(n.args[k].value);
+    out += ") (on " + names(n.sets, " ") + ")";
+    if (n.alias) out += " (as " + n.alias->name + ")";
+    return out + ") " + at(n);
+  }
+  std::string operator()(const OrderDecl& n) const {
+    return "(order " + names(n.instances, " ") + ") " + at(n);
   }
 };
 

@@ -203,8 +203,13 @@ class Printer {
   std::string random(const Random& n) {
     const char* draw = n.distribution == Distribution::Uniform ? "uniform" : "normal";
     const std::string id = names_.array(names_.home_set, kId) + "[" + names_.labels[0] + "]";
+    // An effect's draws come from its own key (the instance name's hash).
+    const std::string rng =
+        n.owner.empty() ? "rng_"
+                        : fmt::format("rng_.keyed(0x{:016x}ULL /* {} */)", fnv1a64(n.owner),
+                                      n.owner);
     auto one = [&](int k) {
-      return fmt::format("rng_.{}({}, step_, {}, {})", draw, id, n.stream, k);
+      return fmt::format("{}.{}({}, step_, {}, {})", rng, draw, id, n.stream, k);
     };
     if (n.type != Type::Vec) return one(0);
     std::vector<std::string> parts;

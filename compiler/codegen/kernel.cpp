@@ -44,11 +44,11 @@ void ModelEmitter::plan_kernels() {
 // The calls of every stage of one kind (of one name), in order; an iterate
 // block's statements in a loop that ends when its condition holds, or stops
 // the run with a message when its limit is reached first.
-void ModelEmitter::stage_calls(StageKind kind, const std::string& name) {
+void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool after_load) {
   plan_kernels();
   for (std::size_t g = 0; g < m_.stages.size(); ++g) {
     const Stage& stage = m_.stages[g];
-    if (stage.kind != kind || stage.name != name) continue;
+    if (stage.kind != kind || stage.name != name || (after_load && !stage.also_after_load)) continue;
     auto call = [&](int k) {
       for (const Kernel& kernel : kernels_)
         if (kernel.position == std::make_pair(static_cast<int>(g), k)) linef("{}();", kernel.name);
@@ -149,9 +149,16 @@ void ModelEmitter::kernel(const Kernel& k) {
       names.labels[acc->label] = names.labels[l.members.front()->label];
   const std::string i = names.labels[0];
 
-  // The comment: the .part line and the decisions behind the kernel.
-  linef("// {}", source_line(st.loc));
-  linef("//   {}", source_text(st.loc));
+  // The comment: the .part line (each effect's, for a statement they were
+  // merged into) and the decisions behind the kernel.
+  if (st.origins.empty()) {
+    linef("// {}", source_line(st.loc));
+    linef("//   {}", source_text(st.loc));
+  }
+  for (const Origin& o : st.origins) {
+    linef("// effect {}, {}", o.effect, source_line(o.loc));
+    linef("//   {}", source_text(o.loc));
+  }
   for (const Accumulate* acc : uses.accumulations) {
     comment(fmt::format("{}: {}", accumulation_heading(m_, st, *acc),
                         facts_.neighbourhoods.at(acc->id).reason));

@@ -128,8 +128,11 @@ void ModelEmitter::line(const std::string& text) {
   out_ += '\n';
 }
 
+// The model's own lines by the name it was given; a module's by its path.
 std::string ModelEmitter::source_line(Location loc) const {
-  return fmt::format("{}:{}", options_.source_name, file_.line_column(loc.begin).line);
+  return fmt::format("{}:{}",
+                     file_.file_of(loc.begin) == 0 ? options_.source_name : file_.path_of(loc.begin),
+                     file_.line_column(loc.begin).line);
 }
 
 void ModelEmitter::plan_searches() {
@@ -369,6 +372,8 @@ void ModelEmitter::load() {
       "if ({}) throw partc::UsageError(\"no particle set '\" + name + \"' in model {} (sets: "
       "{})\");",
       fmt::join(set_comparisons(names), " && "), m_.name, fmt::join(names, ", "));
+  // An integrator's primed slots (the forces of the state loaded) end load as they end init.
+  stage_calls(StageKind::Init, "", true);
   line("}");
   line("");
 }

@@ -156,7 +156,8 @@ class ModelEmitter {
     std::pair<int, int> position;  // (stage, statement)
   };
   void plan_kernels();
-  void stage_calls(StageKind kind, const std::string& name = "");
+  // after_load: only the init stages that also end load().
+  void stage_calls(StageKind kind, const std::string& name = "", bool after_load = false);
   void named_stages();
   void kernels();
   void kernel(const Kernel& k);

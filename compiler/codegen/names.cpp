@@ -20,10 +20,19 @@ const std::set<std::string> kCppKeywords = {
     "Vec"};
 }  // namespace
 
-std::string cpp_name(const std::string& name) {
+std::string cpp_name(const std::string& qualified) {
+  std::string name = qualified;
+  for (char& c : name)
+    if (c == '.') c = '_';
   const bool reserved = kCppKeywords.count(name) || name.find("__") != std::string::npos ||
                         (name.size() > 1 && name[0] == '_' && std::isupper(name[1]));
   return reserved ? name + "_" : name;
+}
+
+std::uint64_t fnv1a64(const std::string& name) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (unsigned char c : name) hash = (hash ^ c) * 0x100000001b3ULL;
+  return hash;
 }
 
 std::string upper_case(const std::string& name) {

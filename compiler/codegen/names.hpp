@@ -6,13 +6,19 @@
 // from a NameTable so they never collide with the model's.
 #pragma once
 
+#include <cstdint>
 #include <set>
 #include <string>
 
 namespace partc::codegen {
 
-// `name`, or `name_` when `name` is a C++ keyword or reserved identifier.
+// `name`, or `name_` when `name` is a C++ keyword or reserved identifier;
+// an effect's qualified name (lj.eps) with '_' for '.' (lj_eps: the scene
+// made sure no other name is spelled so).
 std::string cpp_name(const std::string& name);
+
+// The 64-bit FNV-1a hash of a name: an effect instance's random key.
+std::uint64_t fnv1a64(const std::string& name);
 
 // "LjMelt" -> "LJMELT": for macro names.
 std::string upper_case(const std::string& name);

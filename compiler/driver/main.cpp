@@ -1,6 +1,7 @@
 // partc: compiles a .part model into a C++ translation unit.
 //
 //   partc model.part -o model.cpp [--main] [--emit=ast|ir|cpp] [--explain]
+//         [--drop NAME] [--stdlib DIR]
 //
 // Exit status: 0 success, 1 the model has errors, 2 bad command line,
 // 3 an I/O failure or a partc bug. Output files are written whole or not at
@@ -14,6 +15,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "ast/printer.hpp"
 #include "driver/pipeline.hpp"
@@ -26,6 +28,7 @@ namespace {
 
 const char* const kUsage =
     "usage: partc MODEL.part [-o OUTPUT] [--main] [--emit=ast|ir|cpp] [--explain]\n"
+    "             [--drop NAME]... [--stdlib DIR]...\n"
     "\n"
     "Compiles a particle model into one C++17 translation unit.\n"
     "\n"
@@ -34,6 +37,12 @@ const char* const kUsage =
     "  --emit=WHAT       ast: the syntax tree; ir: the typed IR; cpp: C++ (the default)\n"
     "  --explain         print, per statement, the search structure chosen for each\n"
     "                    accumulation and whether the update is buffered, and why\n"
+    "  --drop NAME       compile a scene without its effect instance NAME, as if its\n"
+    "                    use line were deleted (repeatable)\n"
+    "  --depfile FILE    also write a make-style dependency file: the output depends on\n"
+    "                    the model and every module it opened (with -o)\n"
+    "  --stdlib DIR      look for modules in DIR before the standard library (the\n"
+    "                    scene's own folder is searched first); repeatable\n"
     "  --version         print the version\n"
     "  --help            print this help\n";
 
@@ -43,6 +52,9 @@ struct Options {
   bool driver_main = false;
   bool explain = false;
   std::string emit = "cpp";
+  std::vector<std::string> drop;
+  std::vector<std::string> module_folders;
+  std::optional<std::string> depfile;
 };
 
 struct UsageError {
@@ -58,6 +70,21 @@ Options parse_options(int argc, char** argv) {
       o.output = argv[++k];
     } else if (arg == "--main") {
       o.driver_main = true;
+    } else if (arg == "--depfile") {
+      if (k + 1 >= argc) throw UsageError{"--depfile needs a file name"};
+      o.depfile = argv[++k];
+    } else if (arg == "--drop" || arg == "--stdlib") {
+      if (k + 1 >= argc || argv[k + 1][0] == '\0')
+        throw UsageError{arg + (arg == "--drop" ? " needs an effect instance's name" : " needs a folder")};
+      const std::string value = argv[++k];
+      if (arg == "--drop") {
+        o.drop.push_back(value);
+      } else {
+        std::error_code error;
+        if (!std::filesystem::is_directory(value, error))
+          throw UsageError{"--stdlib " + value + ": no such folder"};
+        o.module_folders.push_back(value);
+      }
     } else if (arg == "--explain") {
       o.explain = true;
     } else if (arg.rfind("--emit=", 0) == 0) {
@@ -73,6 +100,8 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (o.input.empty()) throw UsageError{"no input file"};
+  if (o.depfile && (!o.output || *o.output == "-"))
+    throw UsageError{"--depfile needs -o: a dependency file names the output it is for"};
   // Through links too: -o m.part, or a link to it, would replace the model.
   std::error_code ignored;
   if (o.output && *o.output != "-" && std::filesystem::equivalent(o.input, *o.output, ignored))
@@ -91,6 +120,16 @@ void write_output(const std::optional<std::string>& path, const std::string& tex
   if (!folder.empty() && !std::filesystem::is_directory(folder))
     throw std::runtime_error("cannot write '" + *path + "': folder '" + folder.string() +
                              "' does not exist");
+  // The same text already there is left alone, so a build that reruns
+  // partc (a new partc, a touched module) recompiles only what changed.
+  std::error_code error;
+  if (std::filesystem::is_regular_file(*path, error) &&
+      std::filesystem::file_size(*path, error) == text.size()) {
+    std::ifstream in(*path, std::ios::binary);
+    std::string existing(text.size(), '\0');
+    if (in.read(existing.data(), static_cast<std::streamsize>(existing.size())) && existing == text)
+      return;
+  }
   partc::detail::write_file_atomically(*path, [&](std::ostream& out) { out << text; });
 }
 
@@ -129,7 +168,14 @@ int main(int argc, char** argv) {
       write_output(options.output, partc::ast::to_string(partc::parse_program(*file), *file));
       return 0;
     }
-    const partc::Compilation c = partc::analyse(*file);
+    // Modules: the scene's own folder, then --stdlib folders, then the standard library.
+    partc::SceneOptions scene;
+    const std::string folder = std::filesystem::path(options.input).parent_path().string();
+    scene.roots.push_back({folder.empty() ? "." : folder, folder});
+    for (const std::string& dir : options.module_folders) scene.roots.push_back({dir, dir});
+    scene.roots.push_back({PARTC_STDLIB_DIR, "stdlib"});
+    scene.drop = options.drop;
+    const partc::Compilation c = partc::analyse(*file, scene);
     for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
     if (options.explain) std::cout << partc::explain(c, *file);
     if (options.emit == "ir") {
@@ -143,6 +189,17 @@ int main(int argc, char** argv) {
     const std::string code = partc::generate_cpp(c.model, c.facts, *file, codegen);
     const std::string name = options.output ? *options.output : "model.cpp";
     write_output(options.output, partc::format_cpp(code, name));
+    if (options.depfile) {
+      // Spaces in a make rule are escaped with a backslash.
+      auto escaped = [](const std::string& path) {
+        std::string out;
+        for (char ch : path) out += ch == ' ' ? std::string("\\ ") : std::string(1, ch);
+        return out;
+      };
+      std::string rule = escaped(*options.output) + ": " + escaped(options.input);
+      for (const std::string& module : c.scene.module_files) rule += " \\\n  " + escaped(module);
+      write_output(options.depfile, rule + "\n");
+    }
     return 0;
   } catch (const partc::CompileError& e) {
     std::size_t errors = 0;
@@ -152,6 +209,9 @@ int main(int argc, char** argv) {
     }
     if (errors > 1) std::cerr << errors << " errors\n";
     return 1;
+  } catch (const std::invalid_argument& e) {  // a --drop the scene cannot take
+    std::cerr << "partc: error: " << e.what() << "\n";
+    return 2;
   } catch (const partc::InternalError& e) {
     std::cerr << "partc: internal error: partc bug: " << e.what() << "\n";
     return 3;

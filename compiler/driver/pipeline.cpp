@@ -9,12 +9,17 @@
 
 namespace partc {
 
-Compilation analyse(const SourceFile& file) {
+Compilation analyse(SourceFile& file, const SceneOptions& scene) {
   Compilation c;
   // Text to syntax tree; syntax errors stop here, with what was expected.
-  c.ast = parse_program(file);
+  // A scene's effects are opened and instantiated: a plain model from here on.
+  c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file, c.warnings);
+  // Fusion across statements: an effect's variable set and read once per
+  // step is computed where it is read. Before the analyses, which see the
+  // fused statements.
+  c.single_use = ir::inline_single_use(c.model);
   // Facts the code generator acts on. Each pass reads the IR only.
   c.facts.uniform_sums = find_uniform_sums(c.model);
   c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);
@@ -35,6 +40,13 @@ Compilation analyse(const SourceFile& file) {
 std::string explain(const Compilation& c, const SourceFile& file) {
   std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
                                 c.model.sets.size(), c.model.stages.size());
+  out += explain_scene(c.scene, file);
+  for (const ir::InlinedVariable& v : c.single_use.inlined)
+    out += fmt::format("fused: {}.{} is not stored: {} computes it where {} reads it\n", v.set,
+                       v.var, file.line_reference(v.writer.begin),
+                       file.line_reference(v.reader.begin));
+  for (const ir::InlineRefusal& r : c.single_use.refused)
+    out += fmt::format("not fused: {}.{} stays stored: {}\n", r.set, r.var, r.reason);
   out += "storage (computed in double however stored: a load widens, a store rounds once):\n";
   for (const ir::ParticleSet& set : c.model.sets)
     for (const ir::Variable& var : set.vars)
@@ -45,11 +57,18 @@ std::string explain(const Compilation& c, const SourceFile& file) {
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {
       const ir::Statement& st = stage.statements[k];
       const LineColumn at = file.line_column(st.loc.begin);
-      out += fmt::format("{}:{}: {} {}\n", file.path(), at.line,
-                         stage.kind == ir::StageKind::Init   ? "init"
-                         : stage.kind == ir::StageKind::Step ? "step"
-                                                             : "stage " + stage.name,
-                         file.slice(st.loc));
+      const std::string kind = stage.kind == ir::StageKind::Init   ? "init"
+                               : stage.kind == ir::StageKind::Step ? "step"
+                                                                   : "stage " + stage.name;
+      if (st.origins.empty()) {
+        out += fmt::format("{}:{}: {} {}\n", file.path(), at.line, kind, file.slice(st.loc));
+      } else {  // instantiated: the statement, then each effect's term of it
+        out += fmt::format("{} {} {} ... ({}):\n", kind, ir::target_name(c.model, st),
+                           ir::assign_op_spelling(st.op), st.name);
+        for (const ir::Origin& o : st.origins)
+          out += fmt::format("  effect {}, {}: {}\n", o.effect, file.line_reference(o.loc.begin),
+                             file.slice(o.loc));
+      }
       out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
       if (st.solve_operator)
         out += "  solve: " +

@@ -6,22 +6,28 @@
 #include "analysis/coincident_pairs.hpp"
 #include "ast/ast.hpp"
 #include "codegen/codegen.hpp"
+#include "ir/inline_single_use.hpp"
 #include "ir/ir.hpp"
+#include "sema/scene.hpp"
 #include "support/diagnostics.hpp"
 #include "support/source.hpp"
 
 namespace partc {
 
 struct Compilation {
-  ast::Program ast;
+  SceneReport scene;  // the effects used, for --explain
+  ast::Program ast;   // the model itself: a scene with its effects instantiated
   ir::Model model;
   ModelFacts facts;
+  ir::SingleUseReport single_use;  // variables computed in their reader, not stored
   CoincidenceReport coincident;  // for warnings and --explain only
   std::vector<Diagnostic> warnings;
 };
 
-// Front end and analyses; throws CompileError for a bad model.
-Compilation analyse(const SourceFile& file);
+// Front end and analyses; throws CompileError for a bad model, and
+// std::invalid_argument for a --drop the scene cannot take. Modules a scene
+// uses are appended to `file`.
+Compilation analyse(SourceFile& file, const SceneOptions& scene = {});
 
 // --explain: per statement, what was decided and why.
 std::string explain(const Compilation& c, const SourceFile& file);

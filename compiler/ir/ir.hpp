@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -168,14 +169,17 @@ struct Component : ExprNode {
 // uniform(), normal(), uniform_vec(), normal_vec(). Each call site has its
 // own stream so draws are independent; a draw is keyed by (seed, particle
 // id, step, stream, component), so it does not depend on particle order or
-// thread count.
+// thread count. A draw in an effect's statement is keyed by its instance too
+// (`owner`, streams counted per instance), so one effect's noise does not
+// depend on which other effects a scene uses.
 enum class Distribution { Uniform, Normal };
 struct Random : ExprNode {
   static constexpr ExprKind node_kind = ExprKind::Random;
-  Random(Type t, Distribution d, int s, Location l)
-      : ExprNode(node_kind, t, l), distribution(d), stream(s) {}
+  Random(Type t, Distribution d, int s, std::string o, Location l)
+      : ExprNode(node_kind, t, l), distribution(d), stream(s), owner(std::move(o)) {}
   const Distribution distribution;
   const int stream;
+  const std::string owner;  // the effect instance; empty in a model's own statements
 };
 
 // sum / min / max / count over particles `label` that satisfy `condition`.
@@ -295,6 +299,7 @@ struct Variable {
   bool mirrored = false;  // a vec turned with its particle at a reflecting face
   Precision storage = Precision::Double;  // Float only for real and vec variables and p
   std::string storage_reason;             // why, for --explain: set by sema's schedule checks
+  bool effect_owned = false;  // declared by an effect's `owns`: passes may decide its storage
 };
 
 // The builtin variables sit first in every set, in this order.
@@ -339,8 +344,15 @@ struct Schedule {
 // target[labels[0]] op= value, run for every particle of the target's set;
 // or, when `observable` is set, observable op= value, run once (its labels
 // are its reductions', labels[0] a placeholder naming no particle).
+// The effect instance and module statement a term of a statement came from.
+struct Origin {
+  std::string effect;
+  Location loc;
+};
+
 struct Statement {
   std::string name;  // empty unless named for the schedule
+  std::vector<Origin> origins;  // empty unless instantiated from effects
   Schedule schedule;
   int set;
   int var;
@@ -370,6 +382,7 @@ enum class StageKind { Init, Step, Named };
 struct Stage {
   StageKind kind;
   std::string name;  // of a named stage
+  bool also_after_load = false;  // an init stage that also ends load (primed slots)
   std::vector<Iterate> loops;  // in order, not nested
   int set;  // -1: a block of a model with several sets that assigns only observables
   std::vector<Statement> statements;
@@ -391,6 +404,8 @@ struct Model;
 // How --explain and kernel comments name an accumulation: "sum(j)", or
 // "sum(j in W)" when j runs over another set than the statement's.
 std::string accumulation_heading(const Model& m, const Statement& st, const Accumulate& acc);
+// "f[i]" (with the set, "P.f[i]", in a model of several sets), or an observable's name.
+std::string target_name(const Model& m, const Statement& st);
 
 struct Model {
   std::string name;
@@ -406,6 +421,7 @@ struct Model {
   std::vector<Frames> frames;
   std::vector<Stage> stages;  // in file order
   int random_streams = 0;
+  std::map<std::string, int> effect_random_streams;  // per effect instance
   int accumulations = 0;
 };
 

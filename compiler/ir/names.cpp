@@ -107,4 +107,11 @@ std::string accumulation_heading(const Model& m, const Statement& st, const Accu
   return heading + ")";
 }
 
+std::string target_name(const Model& m, const Statement& st) {
+  if (st.observable >= 0) return m.observables[st.observable].name;
+  const ParticleSet& set = m.sets[st.set];
+  return (m.sets.size() > 1 ? set.name + "." : "") + set.vars[st.var].name + "[" +
+         st.labels[0].name + "]";
+}
+
 }  // namespace partc::ir

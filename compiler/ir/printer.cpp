@@ -57,8 +57,10 @@ std::string to_string(const Expr& e, const Model& model, const std::vector<Label
     }
     case ExprKind::Random: {
       auto r = as<Random>(e);
-      return fmt::format("{}{}#{}()", r->distribution == Distribution::Uniform ? "uniform" : "normal",
-                         r->type == Type::Vec ? "_vec" : "", r->stream);
+      return fmt::format("{}{}#{}{}()",
+                         r->distribution == Distribution::Uniform ? "uniform" : "normal",
+                         r->type == Type::Vec ? "_vec" : "", r->owner.empty() ? "" : r->owner + "#",
+                         r->stream);
     }
     case ExprKind::FnArg: return as<FnArg>(e)->name;
     case ExprKind::FnCall: {

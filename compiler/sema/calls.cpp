@@ -200,7 +200,9 @@ Expr Sema::check_random(const ast::Call& n, Scope& scope) {
   const bool vec = name.size() > 4 && name.compare(name.size() - 4, 4, "_vec") == 0;
   const auto dist =
       name.rfind("uniform", 0) == 0 ? ir::Distribution::Uniform : ir::Distribution::Normal;
-  return std::make_shared<ir::Random>(vec ? Type::Vec : Type::Real, dist, model_.random_streams++,
+  const int stream = n.random_key.empty() ? model_.random_streams++
+                                          : model_.effect_random_streams[n.random_key]++;
+  return std::make_shared<ir::Random>(vec ? Type::Vec : Type::Real, dist, stream, n.random_key,
                                       n.loc);
 }
 

@@ -266,7 +266,7 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
           fail(var.name.loc, "only a vec can be mirrored: " + quoted(var.name.name) + " is " +
                                  a_type(type));
         set.vars.push_back({var.name.name, type, initial, false, var.loc, var.mirrored,
-                            ir::Precision::Double, {}});
+                            ir::Precision::Double, {}, var.effect_owned});
       });
     });
   }

@@ -16,6 +16,7 @@ void Sema::check_stage(const ast::StageBlock& block) {
                                       : ir::StageKind::Named;
   stage.loc = block.loc;
   stage.set = -1;
+  stage.also_after_load = block.also_after_load;
   try {
     const ast::Identifier* set = stage_words(block, stage);
     stage.set = resolve_stage_set(block, set);
@@ -67,6 +68,9 @@ void Sema::check_block(const std::vector<ast::BlockStatement>& body, ir::Stage& 
       const auto* solve = boost::get<ast::SolveStatement>(&s);
       stage.statements.push_back(a ? check_statement(*a, stage.set)
                                    : check_solve(*solve, stage.set));
+      if (a)
+        for (const ast::Origin& o : a->origins)
+          stage.statements.back().origins.push_back({o.effect, o.loc});
       const boost::optional<ast::Identifier>& name = a ? a->name : solve->name;
       if (!name) return;
       const auto [it, fresh] = statement_names_.emplace(

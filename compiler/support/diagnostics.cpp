@@ -8,9 +8,9 @@ void internal_error(const std::string& what) { throw InternalError(what); }
 
 std::string format_diagnostic(const SourceFile& file, const Diagnostic& d) {
   const LineColumn at = file.line_column(d.loc.begin);
-  std::string out = file.path() + ":" + std::to_string(at.line) + ":" +
+  std::string out = file.path_of(d.loc.begin) + ":" + std::to_string(at.line) + ":" +
                     std::to_string(at.column) + (d.warning ? ": warning: " : ": error: ") + d.message + "\n";
-  const std::string_view line = file.line_text(at.line);
+  const std::string_view line = file.line_text(d.loc.begin, at.line);
   out += "  ";
   out += line;
   out += "\n  ";

@@ -51,6 +51,11 @@ class CounterRng {
 
   std::uint64_t seed() const { return seed_; }
 
+  // The generator of one effect instance: Philox under another key, so its
+  // draws are independent of every other key's (partc passes the hash of
+  // the instance's name).
+  CounterRng keyed(std::uint64_t key) const { return CounterRng(seed_ ^ key); }
+
   // The top 53 bits of the block's first 64 bits: every double in [0, 1) that
   // is a multiple of 2^-53, equally likely.
   double uniform(std::uint64_t id, std::uint64_t step, std::uint32_t stream,

@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""Scenes against the hand-written models they reproduce, in one run.
+
+    bench_scenes.py EXAMPLES_BUILD_DIR
+
+examples/scenes/md.part (symplectic Euler + the soft exponential force,
+from stdlib/) against examples/md.part (one statement for v, one for p),
+N = 1e3 ... 1e6; and examples/scenes/lj_melt.part (velocity Verlet + LJ)
+against examples/lj_melt.part, 32000 atoms. Both programs of a pair run
+alternately, 3 rounds, one thread; the figure is the run time the driver
+reports (the steps, not init), the median of the rounds. The issue's target:
+a scene within 1.05x of the hand-written model.
+"""
+import os
+import re
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROUNDS = 3
+
+
+def seconds(program, args):
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    out = subprocess.run([str(program), *args], env=env, check=True, capture_output=True,
+                         text=True).stdout
+    match = re.search(r"(\d+) steps, seed \d+, ([0-9.e+-]+) s", out)
+    if not match:
+        sys.exit(f"{program}: no timing in its summary:\n{out}")
+    return float(match.group(2))
+
+
+def compare(label, hand, scene, args):
+    times = {hand: [], scene: []}
+    for _ in range(ROUNDS):
+        for program in (hand, scene):
+            times[program].append(seconds(program, args))
+    a, b = statistics.median(times[hand]), statistics.median(times[scene])
+    print(f"{label:<28} {a:>10.4f} {b:>10.4f} {b / a:>8.3f}")
+
+
+def main():
+    build = Path(sys.argv[1])
+    print(f"{'model':<28} {'hand (s)':>10} {'scene (s)':>10} {'ratio':>8}")
+    for n, steps in ((1000, 2000), (10000, 200), (100000, 20), (1000000, 4)):
+        compare(f"md N={n}, {steps} steps", build / "md", build / "md_scene",
+                ["--set", f"N={n}", "--steps", str(steps), "--seed", "1"])
+    compare("lj_melt 32000, 100 steps", build / "lj_melt", build / "lj_melt_scene",
+            ["--steps", "100", "--seed", "1"])
+
+
+if __name__ == "__main__":
+    main()
