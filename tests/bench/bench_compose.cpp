@@ -534,7 +534,7 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
     std::string walks, structures, builds;
   };
   std::vector<Row> rows;
-  std::map<std::string, double> per_step;  // by name, ms
+  std::map<std::string, double> per_step;  // ms, by variant name or LAMMPS label
   const std::vector<const Variant*> chosen = variants_at(rc_coul);
   std::vector<std::vector<Timed>> runs(chosen.size());
   for (int r = 0; r < repetitions; ++r)
@@ -557,14 +557,13 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
                     std::to_string(builds)});
     per_step[v.name] = rows.back().per_step_ms;
   }
-  std::map<std::string, double> lammps_step;  // by label, ms
   for (const LammpsRow& l : lammps_rows(rc_coul)) {
     const auto style = std::find_if(lammps.begin(), lammps.end(), [&](const LammpsStyle& s) {
       return same_style(s.first.pair_style, l.pair_style);
     });
     if (style == lammps.end()) continue;
     const double ms = 1e3 * bench::median(style->loop_seconds) / steps;
-    lammps_step[l.label] = ms;
+    per_step[l.label] = ms;
     rows.push_back({l.label + " (" + std::to_string(style->loop_seconds.size()) + " runs)", ms,
                     std::nan(""), l.label == "LAMMPS hybrid/overlay" ? "2" : "1", "-",
                     std::to_string(style->first.builds)});
@@ -581,40 +580,34 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
     std::printf("%-36s %10s %14s %6s %11s %7s\n", r.name.c_str(),
                 cell("%.2f", r.per_step_ms).c_str(), cell("%.2f", r.without_first_ms).c_str(),
                 r.walks.c_str(), r.structures.c_str(), r.builds.c_str());
-  const auto ratio = [&](const std::map<std::string, double>& times, const char* a, const char* b) {
-    const auto x = times.find(a), y = times.find(b);
-    return x == times.end() || y == times.end() ? std::nan("") : x->second / y->second;
+  const auto ms = [&](const char* name) {
+    const auto it = per_step.find(name);
+    return it == per_step.end() ? std::nan("") : it->second;
   };
+  const auto ratio = [&](const char* a, const char* b) { return cell("%.2f", ms(a) / ms(b)); };
   std::printf("\nsearch_report() of the median runs:\n");
   for (const std::string& s : structures) std::printf("  %s\n", s.c_str());
 
   std::printf(
       "\npartc composed / separate, lists: one sum %s, fused %s (issue 10's target: <= 0.65)\n",
-      cell("%.2f", ratio(per_step, "partc one sum, lists", "partc separate, lists")).c_str(),
-      cell("%.2f", ratio(per_step, "partc fused, lists", "partc separate, lists")).c_str());
+      ratio("partc one sum, lists", "partc separate, lists").c_str(),
+      ratio("partc fused, lists", "partc separate, lists").c_str());
   std::printf("partc composed / separate, cells: fused %s\n",
-              cell("%.2f", ratio(per_step, "partc fused, cells", "partc separate, cells")).c_str());
+              ratio("partc fused, cells", "partc separate, cells").c_str());
   if (rc_coul != rc_lj)
-    std::printf(
-        "partc composed / one radius: lists, one sum %s, fused %s; cells, fused %s\n",
-        cell("%.2f", ratio(per_step, "partc one sum, lists", "partc one radius, lists")).c_str(),
-        cell("%.2f", ratio(per_step, "partc fused, lists", "partc one radius, lists")).c_str(),
-        cell("%.2f", ratio(per_step, "partc fused, cells", "partc one radius, cells")).c_str());
-  std::printf(
-      "partc composed / (LJ alone + Coulomb alone), lists: one sum %s\n",
-      cell("%.2f", per_step["partc one sum, lists"] /
-                       (per_step["partc LJ alone, lists"] + per_step["partc Coulomb alone, lists"]))
-          .c_str());
-  std::printf(
-      "LAMMPS hybrid/overlay / lj/cut/coul/cut %s; lj/cut/coul/cut / hybrid/overlay %s\n",
-      cell("%.2f", ratio(lammps_step, "LAMMPS hybrid/overlay", "LAMMPS lj/cut/coul/cut")).c_str(),
-      cell("%.2f", ratio(lammps_step, "LAMMPS lj/cut/coul/cut", "LAMMPS hybrid/overlay")).c_str());
-  std::printf(
-      "partc one sum, lists / LAMMPS lj/cut/coul/cut %s\n",
-      cell("%.2f", per_step["partc one sum, lists"] / (lammps_step.count("LAMMPS lj/cut/coul/cut")
-                                                           ? lammps_step["LAMMPS lj/cut/coul/cut"]
-                                                           : std::nan("")))
-          .c_str());
+    std::printf("partc composed / one radius: lists, one sum %s, fused %s; cells, fused %s\n",
+                ratio("partc one sum, lists", "partc one radius, lists").c_str(),
+                ratio("partc fused, lists", "partc one radius, lists").c_str(),
+                ratio("partc fused, cells", "partc one radius, cells").c_str());
+  std::printf("partc composed / (LJ alone + Coulomb alone), lists: one sum %s\n",
+              cell("%.2f", ms("partc one sum, lists") /
+                               (ms("partc LJ alone, lists") + ms("partc Coulomb alone, lists")))
+                  .c_str());
+  std::printf("LAMMPS hybrid/overlay / lj/cut/coul/cut %s; lj/cut/coul/cut / hybrid/overlay %s\n",
+              ratio("LAMMPS hybrid/overlay", "LAMMPS lj/cut/coul/cut").c_str(),
+              ratio("LAMMPS lj/cut/coul/cut", "LAMMPS hybrid/overlay").c_str());
+  std::printf("partc one sum, lists / LAMMPS lj/cut/coul/cut %s\n",
+              ratio("partc one sum, lists", "LAMMPS lj/cut/coul/cut").c_str());
 
   // Energies: partc's by the hand-written code, LAMMPS's own thermo, same start.
   const std::vector<Thermo> ours = thermo_run(variants().front(), start, rc_coul);
