@@ -36,7 +36,9 @@ const char* const kUsage =
     "  --main            also emit main(): the command-line driver (see --help of the model)\n"
     "  --emit=WHAT       ast: the syntax tree; ir: the typed IR; cpp: C++ (the default)\n"
     "  --explain         print, per statement, the search structure chosen for each\n"
-    "                    accumulation and whether the update is buffered, and why\n"
+    "                    accumulation and whether the update is buffered, and why; for a\n"
+    "                    scene, the effects kept, the modules opened, liveness and fusion\n"
+    "  --explain=json    the same facts as one JSON document\n"
     "  --drop NAME       compile a scene without its effect instance NAME, as if its\n"
     "                    use line were deleted (repeatable)\n"
     "  --depfile FILE    also write a make-style dependency file: the output depends on\n"
@@ -51,6 +53,7 @@ struct Options {
   std::optional<std::string> output;
   bool driver_main = false;
   bool explain = false;
+  bool explain_json = false;
   std::string emit = "cpp";
   std::vector<std::string> drop;
   std::vector<std::string> module_folders;
@@ -87,6 +90,8 @@ Options parse_options(int argc, char** argv) {
       }
     } else if (arg == "--explain") {
       o.explain = true;
+    } else if (arg == "--explain=json") {
+      o.explain = o.explain_json = true;
     } else if (arg.rfind("--emit=", 0) == 0) {
       o.emit = arg.substr(7);
       if (o.emit != "ast" && o.emit != "ir" && o.emit != "cpp")
@@ -177,7 +182,8 @@ int main(int argc, char** argv) {
     scene.drop = options.drop;
     const partc::Compilation c = partc::analyse(*file, scene);
     for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
-    if (options.explain) std::cout << partc::explain(c, *file);
+    if (options.explain)
+      std::cout << (options.explain_json ? partc::explain_json(c, *file) : partc::explain(c, *file));
     if (options.emit == "ir") {
       write_output(options.output, partc::ir::to_string(c.model));
       return 0;

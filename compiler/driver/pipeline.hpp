@@ -31,5 +31,7 @@ Compilation analyse(SourceFile& file, const SceneOptions& scene = {});
 
 // --explain: per statement, what was decided and why.
 std::string explain(const Compilation& c, const SourceFile& file);
+// --explain=json: the same facts as one JSON document (explain_json.cpp).
+std::string explain_json(const Compilation& c, const SourceFile& file);
 
 }  // namespace partc

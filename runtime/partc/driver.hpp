@@ -325,7 +325,8 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
   text << Model::model_name << ": " << model.step_count() << " steps, seed " << options.seed << ", "
        << seconds << " s\n";
   model.for_each_set([&](const char* set_name, const auto& set) {
-    text << set_name << ": " << set.size() << (set.size() == 1 ? " particle\n" : " particles\n");
+    text << set_name << ": " << set.size() << (set.size() == 1 ? " particle, " : " particles, ")
+         << std::decay_t<decltype(set)>::bytes_per_particle << " bytes each\n";
     if (set.empty()) return;
     text << "  " << std::left << std::setw(12) << "variable" << std::right << std::setw(14) << "min"
          << std::setw(14) << "mean" << std::setw(14) << "max"

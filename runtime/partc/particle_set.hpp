@@ -46,6 +46,12 @@ class BasicParticleSet {
   std::size_t size() const { return positions_.size(); }
   bool empty() const { return positions_.empty(); }
 
+  // What one particle takes in the arrays: position, id, alive flag and
+  // every variable, as stored (partc --explain says the same number).
+  static constexpr std::size_t bytes_per_particle =
+      sizeof(Position) + sizeof(std::int64_t) + sizeof(std::uint8_t) +
+      (std::size_t{0} + ... + sizeof(storage_t<typename Vars::type>));
+
   void reserve(std::size_t n) {
     for_each_array([n](auto& a) { a.reserve(n); });
   }

@@ -225,7 +225,8 @@ TEST_CASE("driver: a run prints a summary per set unless --quiet", "[driver]") {
   CHECK(result.status == 0);
   CHECK(result.err.empty());
   CHECK(result.out.rfind("toy: 3 steps, seed 5, ", 0) == 0);
-  CHECK(result.out.find("\nP: 6 particles\n") != std::string::npos);
+  // p 16 (2 doubles) + id 8 + alive 1 + v 16 + e 8 + hits 8 (an int64) + moving 1 (a byte).
+  CHECK(result.out.find("\nP: 6 particles, 58 bytes each\n") != std::string::npos);
   CHECK(result.out.find("\n  |v|  ") != std::string::npos);
   // hits counts the steps, so its min, mean and max are all 3.
   CHECK(result.out.find("\n  hits" + std::string(21, ' ') + "3" + std::string(13, ' ') + "3" +
@@ -317,8 +318,8 @@ TEST_CASE("driver: several sets take SET=FILE inputs and write FILE_SET outputs"
   const Run result =
       run<TwoSets>({"--input", "Q=" + q, "--input", "P=" + p, "--steps", "1", "--output", output});
   REQUIRE(result.status == 0);
-  CHECK(result.out.find("\nP: 1 particle\n") != std::string::npos);
-  CHECK(result.out.find("\nQ: 2 particles\n") != std::string::npos);
+  CHECK(result.out.find("\nP: 1 particle, ") != std::string::npos);
+  CHECK(result.out.find("\nQ: 2 particles, ") != std::string::npos);
   CHECK(read_file(path_in("two", "out_Q.csv")) ==
         "id,p_0,p_1,v_0,v_1,e,hits,moving\n0,0.5,0.5,0,0,0,0,0\n1,0.125,0.5,0,0,0,0,0\n");
   const std::string p_out = read_file(path_in("two", "out_P.csv"));

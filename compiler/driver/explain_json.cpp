@@ -1,0 +1,95 @@
+// --explain=json: the facts --explain prints, as one JSON document, for
+// tests and tools. The reasons are the analyses' own strings; this file only
+// arranges them (nlohmann::json writes and escapes).
+#include <nlohmann/json.hpp>
+
+#include "driver/pipeline.hpp"
+#include "ir/visitor.hpp"
+
+namespace partc {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string where(const SourceFile& file, Location loc) {
+  return file.path_of(loc.begin) + ":" + std::to_string(file.line_column(loc.begin).line);
+}
+
+Json scene_facts(const SceneReport& scene, const SourceFile& file) {
+  Json out;
+  out["kept"] = Json::array();
+  for (const SceneReport::Instance& inst : scene.kept)
+    out["kept"].push_back({{"name", inst.name},
+                           {"module", inst.module},
+                           {"sets", inst.sets},
+                           {"use", where(file, inst.use)}});
+  out["dropped"] = scene.dropped;
+  out["modules_opened"] = scene.modules_opened;
+  out["placements"] = scene.placements;
+  out["liveness"] = Json::array();
+  for (const SceneReport::Decision& d : scene.variables)
+    out["liveness"].push_back({{"what", d.what}, {"kept", d.kept}, {"why", d.why}});
+  out["dropped_statements"] = Json::array();
+  for (const SceneReport::DroppedStatement& d : scene.dropped_statements)
+    out["dropped_statements"].push_back(
+        {{"name", d.name}, {"target", d.target}, {"at", where(file, d.loc)}});
+  return out;
+}
+
+}  // namespace
+
+std::string explain_json(const Compilation& c, const SourceFile& file) {
+  Json out;
+  out["model"] = c.model.name;
+  if (c.scene.is_scene()) out["effects"] = scene_facts(c.scene, file);
+  out["fused"] = Json::array();
+  for (const ir::InlinedVariable& v : c.single_use.inlined)
+    out["fused"].push_back({{"set", v.set},
+                            {"var", v.var},
+                            {"writer", where(file, v.writer)},
+                            {"reader", where(file, v.reader)}});
+  out["not_fused"] = Json::array();
+  for (const ir::InlineRefusal& r : c.single_use.refused)
+    out["not_fused"].push_back({{"set", r.set}, {"var", r.var}, {"reason", r.reason}});
+  out["sets"] = Json::array();
+  for (const ir::ParticleSet& set : c.model.sets) {
+    Json vars = Json::array();
+    for (const ir::Variable& var : set.vars)
+      vars.push_back({{"name", var.name}, {"storage", var.storage_reason}});
+    out["sets"].push_back({{"name", set.name}, {"variables", vars}});
+  }
+  out["statements"] = Json::array();
+  for (std::size_t g = 0; g < c.model.stages.size(); ++g) {
+    const ir::Stage& stage = c.model.stages[g];
+    for (std::size_t k = 0; k < stage.statements.size(); ++k) {
+      const ir::Statement& st = stage.statements[k];
+      Json s;
+      s["stage"] = stage.kind == ir::StageKind::Init   ? "init"
+                   : stage.kind == ir::StageKind::Step ? "step"
+                                                       : stage.name;
+      s["target"] = ir::target_name(c.model, st);
+      s["at"] = where(file, st.loc);
+      s["origins"] = Json::array();
+      for (const ir::Origin& o : st.origins)
+        s["origins"].push_back({{"effect", o.effect}, {"at", where(file, o.loc)}});
+      s["update"] = c.facts.aliasing[g][k].reason;
+      s["accumulations"] = Json::array();
+      for (const ir::Accumulate* acc : ir::accumulations_in(st)) {
+        const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
+        Json a = {{"heading", ir::accumulation_heading(c.model, st, *acc)},
+                  {"search", fact.reason},
+                  {"neighbours", fact.kind == SearchFact::Kind::Neighbours}};
+        if (fact.kind == SearchFact::Kind::Neighbours) {
+          a["newton"] = c.facts.symmetry.at(acc->id).newton;
+          a["pairs"] = c.facts.symmetry.at(acc->id).reason;
+        }
+        s["accumulations"].push_back(a);
+      }
+      out["statements"].push_back(s);
+    }
+  }
+  return out.dump(2) + "\n";
+}
+
+}  // namespace partc

@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""partc --explain=json on tests/cli/scene_damped.part: the facts of a scene,
+read as a tool would read them.
+
+    check_explain_json.py PARTC SCENE
+"""
+import json
+import subprocess
+import sys
+
+
+def facts(partc, scene, *extra):
+    out = subprocess.run([partc, scene, "--explain=json", *extra], check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def expect(condition, what):
+    if not condition:
+        sys.exit("--explain=json: " + what)
+
+
+def main():
+    partc, scene = sys.argv[1], sys.argv[2]
+    all_three = facts(partc, scene)
+    kept = [e["name"] for e in all_three["effects"]["kept"]]
+    expect(kept == ["symplectic_euler", "drag", "soft_exp"], f"kept {kept}")
+    opened = all_three["effects"]["modules_opened"]
+    expect(opened == ["stdlib/integrate/symplectic_euler.part", "stdlib/force/drag.part",
+                      "stdlib/pair/soft_exp.part"], f"opened {opened}")
+    expect({"set": "P", "var": "f"} == {k: all_three["fused"][0][k] for k in ("set", "var")},
+           f"fused {all_three['fused']}")
+    kick = [s for s in all_three["statements"] if s["target"] == "v[i]"]
+    expect(len(kick) == 1, f"statements for v: {kick}")
+    effects = [o["effect"] for o in kick[0]["origins"]]
+    expect(effects == ["drag", "soft_exp", "symplectic_euler"], f"origins of the kick {effects}")
+    sums = kick[0]["accumulations"]
+    expect(len(sums) == 1 and sums[0]["neighbours"] and sums[0]["newton"], f"sums {sums}")
+    energy = [d for d in all_three["effects"]["liveness"] if d["what"] == "observable e_soft_exp"]
+    expect(energy and not energy[0]["kept"], f"liveness of the energy {energy}")
+
+    without = facts(partc, scene, "--drop", "drag")
+    expect([e["name"] for e in without["effects"]["kept"]] == ["symplectic_euler", "soft_exp"],
+           "kept with --drop drag")
+    expect(without["effects"]["dropped"] == ["drag"], "dropped with --drop drag")
+    expect("stdlib/force/drag.part" not in without["effects"]["modules_opened"],
+           "a dropped effect's module was opened")
+    print("--explain=json: effects, modules, fusion, origins, liveness and --drop as expected")
+
+
+if __name__ == "__main__":
+    main()
