@@ -399,24 +399,33 @@ std::vector<ast::BlockStatement> Instantiation::slot_statements(const std::strin
                    [&](const Placed& a, const Placed& b) { return rank(a) < rank(b); });
   for (std::size_t k = 0; k < listed.size(); ++k) placed[listed[k]] = sorted[k];
 
+  // The contributions to one variable become one statement, placed where
+  // the last of them was: every effect's earlier statements at the slot
+  // (which its term may read) run before it. Named after the first.
+  auto adds = [](const Placed& p) { return p.st->op == "+=" || p.st->op == "-="; };
+  std::map<std::string, std::size_t> first_of, last_of;
+  for (std::size_t k = 0; k < placed.size(); ++k)
+    if (adds(placed[k])) {
+      const std::string var = placed[k].inst->var(placed[k].st->target.var.name);
+      first_of.emplace(var, k);
+      last_of[var] = k;
+    }
   std::vector<ast::BlockStatement> out;
-  std::set<std::string> merged;  // targets whose contributions are already placed
-  for (const Placed& first : placed) {
-    const std::string var = first.inst->var(first.st->target.var.name);
-    const bool adds = first.st->op == "+=" || first.st->op == "-=";
-    if (adds && merged.count(var)) continue;
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    const std::string var = placed[k].inst->var(placed[k].st->target.var.name);
+    if (adds(placed[k]) && last_of[var] != k) continue;
+    const Placed& first = adds(placed[k]) ? placed[first_of[var]] : placed[k];
     ast::Assignment st;
     st.loc = first.st->loc;
     st.target = first.st->target;
     st.target.var.name = var;
     std::vector<std::string> effects;
-    if (!adds) {
+    if (!adds(first)) {
       st.op = first.st->op;
       st.value = renamers_.at(first.inst).copy(first.st->value);
       st.origins.push_back({first.inst->name, first.st->loc});
       effects.push_back(first.inst->name);
     } else {
-      merged.insert(var);
       const auto owner = owners_.find({set, var});
       const bool clears =
           owner != owners_.end() && owner->second.channel && cleared.insert(var).second;
