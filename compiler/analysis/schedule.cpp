@@ -42,20 +42,25 @@ void check_schedule(const ir::Model& model, const NeighbourhoodReport& neighbour
       NeighbourhoodSums sums(neighbourhoods, st);
       sums.visit(st.value);
       sums.visit(st.solve_operator);
-      const bool searching = st.schedule.skin || st.schedule.search != ir::SearchChoice::Auto;
+      const bool searching = st.schedule.skin || st.schedule.search != ir::SearchChoice::Auto ||
+                             st.schedule.sharing != ir::Sharing::Auto;
       if (st.solve_operator && st.schedule.skin)
         errors.push_back({st.schedule.loc, "a solve takes no skin",
                           "its matrix is assembled once per solve; schedule its search instead"});
       else if (searching && !sums.found)
         errors.push_back({st.schedule.loc,
                           "statement '" + st.name + "' has no neighbourhood sum to schedule",
-                          "search and skin apply to sums whose condition bounds |dx|, "
+                          "search, sharing and skin apply to sums whose condition bounds |dx|, "
                           "like sum(j, |dx| < rc, ...)"});
       else if (st.schedule.skin && sums.over_other_set)
         errors.push_back({st.schedule.loc,
                           "a skin (Verlet lists) needs the sums of '" + st.name +
                               "' to run over its own particle set",
                           "lists are kept per particle of one set; schedule the search instead"});
+      else if (st.schedule.skin && st.schedule.sharing != ir::Sharing::Auto)
+        errors.push_back({st.schedule.loc,
+                          "statement '" + st.name + "' has both a skin and a sharing",
+                          "its Verlet lists are its own, shared with no search; drop one"});
       else if (st.schedule.skin && st.schedule.search != ir::SearchChoice::Auto)
         errors.push_back({st.schedule.loc,
                           "statement '" + st.name + "' has both a skin and a search",

@@ -6,6 +6,7 @@
 #include "analysis/aliasing.hpp"
 #include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
+#include "analysis/search_plan.hpp"
 #include "analysis/symmetry.hpp"
 #include "analysis/uniform_sums.hpp"
 #include "ir/ir.hpp"
@@ -25,6 +26,7 @@ struct ModelFacts {
   PairSymmetryReport symmetry;
   UniformSumReport uniform_sums;
   LinearOperatorReport linear_operators;
+  SearchPlan searches;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

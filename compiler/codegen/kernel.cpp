@@ -175,21 +175,24 @@ void ModelEmitter::kernel(const Kernel& k) {
   kernel_constants(st, uses, names, locals);
 
   // Bring every search this statement needs up to date before any index
-  // is taken: a rebuild may reorder its set.
-  std::map<int, std::vector<std::string>> radii;  // set -> radius expressions
+  // is taken: a rebuild may reorder its set. Verlet lists, per statement, at
+  // this statement's largest radius; searches as the plan groups the sums.
+  std::vector<std::string> list_radii;
+  std::vector<int> groups;
   for (const Accumulate* acc : uses.accumulations) {
     const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
     if (fact.kind != SearchFact::Kind::Neighbours) continue;
-    auto& list = radii[st.labels[acc->label].set];
-    const std::string radius = radius_expression(fact, st, names);
-    if (std::find(list.begin(), list.end(), radius) == list.end()) list.push_back(radius);
+    if (st.schedule.skin) {
+      const std::string radius = radius_expression(fact, st, names);
+      if (std::find(list_radii.begin(), list_radii.end(), radius) == list_radii.end())
+        list_radii.push_back(radius);
+      continue;
+    }
+    const int group = facts_.searches.group_of.at(acc->id);
+    if (std::find(groups.begin(), groups.end(), group) == groups.end()) groups.push_back(group);
   }
-  for (const auto& [s, list] : radii) {
-    if (st.schedule.skin)
-      refresh_lists(st, list, locals.fresh("radius"), names);
-    else
-      refresh_search(s, search_for(s, st), list, locals.fresh("radius"));
-  }
+  if (!list_radii.empty()) refresh_lists(st, list_radii, locals.fresh("radius"), names);
+  for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
     const bool written = key.first == home && key.second == st.var;
@@ -225,7 +228,7 @@ void ModelEmitter::kernel(const Kernel& k) {
       for (const Accumulate* acc : l.members)
         names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
-      const std::string& search = search_for(l.set, st);
+      const std::string& search = search_for(l.members.front()->id);
       pairs_once = locals.fresh("pairs_once");
       line("// Each pair once when the search walks pairs in parallel, or the set is small.");
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
@@ -310,15 +313,54 @@ std::string ModelEmitter::buffer_member(int s, int var) {
   return name;
 }
 
-void ModelEmitter::refresh_search(int s, const std::string& search,
-                                  const std::vector<std::string>& radii, const std::string& local) {
+// The .part lines of a search group's sums, each once.
+static std::vector<int> group_lines(const Model& m, const SearchGroup& group) {
+  std::vector<int> lines;
+  for (const auto& [g, s] : group.statements)
+    if (std::find(lines.begin(), lines.end(), m.stages[g].statements[s].line) == lines.end())
+      lines.push_back(m.stages[g].statements[s].line);
+  return lines;
+}
+
+// A search group's search, built at the largest radius of the group's sums
+// (each in its own statement's names: this kernel's locals, or members), so
+// that every kernel of the stretch asks the same radius and only the first
+// builds. A search that keeps its set's order is built after the group that
+// reorders the set in the stretch, which would otherwise scramble it.
+void ModelEmitter::refresh_search(int group_index, const Statement& st,
+                                  const ExpressionNames& names, NameTable& locals) {
+  const SearchGroup& group = facts_.searches.groups.at(group_index);
+  if (group.built_after >= 0) refresh_search(group.built_after, st, names, locals);
+  std::vector<std::string> radii;
+  for (std::size_t k = 0; k < group.sums.size(); ++k) {
+    const auto [g, s] = group.statements[k];
+    const Statement& owner = m_.stages[g].statements[s];
+    ExpressionNames theirs = base_names();
+    theirs.home_set = owner.set;
+    for (const Label& l : owner.labels) theirs.labels.push_back(cpp_name(l.name));
+    theirs.array = [this](int set, int var) { return array_access(set, var); };
+    const std::string radius = radius_expression(facts_.neighbourhoods.at(group.sums[k]), owner,
+                                                 &owner == &st ? names : theirs);
+    if (std::find(radii.begin(), radii.end(), radius) == radii.end()) radii.push_back(radius);
+  }
   std::string radius = radii.front();
   for (std::size_t k = 1; k < radii.size(); ++k)
     radius = "std::max(" + radius + ", " + radii[k] + ")";
+  const PlannedSearch& plan = facts_.searches.searches.at(group.search);
+  const std::string& search = searches_.at(group.search);
+  const int s = plan.set;
+  const std::string local = locals.fresh("radius");
+  if (group.sums.size() > 1 || group.built_after >= 0)
+    comment(fmt::format("{}'s search, at the largest radius of its sums on line{} {}: {}",
+                        m_.sets[s].name, group.statements.size() > 1 ? "s" : "",
+                        fmt::join(group_lines(m_, group), ", "), group.reason));
   linef("const double {} = {};", local, radius);
   linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
   linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
-  linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
+  if (plan.reorders)
+    linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
+  else
+    linef("{}epoch_ = {};  // {} keeps its order", search, epoch_[s], m_.sets[s].name);
   linef("{}radius_ = {};", search, local);
   line("}");
 }
@@ -385,11 +427,14 @@ std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(
     const int set = st.labels[acc->label].set;
     const SearchFact::Kind kind = facts_.neighbourhoods.at(acc->id).kind;
     const bool once = facts_.uniform_sums.at(acc->id).once;
+    const auto group = facts_.searches.group_of.find(acc->id);
+    const int search =
+        group == facts_.searches.group_of.end() ? -1 : facts_.searches.groups[group->second].search;
     auto same = std::find_if(loops.begin(), loops.end(), [&](const Loop& l) {
-      return l.set == set && l.kind == kind && l.once == once;
+      return l.set == set && l.kind == kind && l.once == once && l.search == search;
     });
     if (same == loops.end())
-      loops.push_back({set, kind, once, {acc}});
+      loops.push_back({set, kind, once, search, {acc}});
     else
       same->members.push_back(acc);
   }
@@ -483,7 +528,8 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
       linef("{}->for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", lists_.at(&st), i,
             reads_j ? " " + j : "", dx.dx ? " dx" : "");
     else  // a query from the searched set itself goes by index: the search knows its cell
-      linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", search_for(l.set, st),
+      linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{",
+            search_for(l.members.front()->id),
             l.set == st.set ? i : emit_load(m_, st.set, kPosition, home_p + "[" + i + "]"),
             reads_j ? " " + j : "", dx.dx ? " dx" : "");
     out_ += body;

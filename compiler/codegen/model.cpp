@@ -144,26 +144,28 @@ void ModelEmitter::plan_searches() {
       if (st.solve_operator)
         solve_results_[&st] = members_.fresh(
             (st.name.empty() ? m_.sets[st.set].vars[st.var].name : st.name) + "_solve_");
-      for (const Accumulate* acc : uses.accumulations) {
-        if (facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours) continue;
-        if (st.schedule.skin) {
-          if (!lists_.count(&st))
-            lists_[&st] =
-                members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
-          continue;
-        }
-        const SearchKey key{st.labels[acc->label].set, st.schedule.search};
-        if (searches_.count(key)) continue;
-        const std::string& set = m_.sets[key.first].name;
-        searches_[key] = members_.fresh(key.second == SearchChoice::Auto
-                                            ? set + "_search_"
-                                            : set + "_" + search_choice_name(key.second) + "_");
-      }
+      for (const Accumulate* acc : uses.accumulations)
+        if (st.schedule.skin &&
+            facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours &&
+            !lists_.count(&st))
+          lists_[&st] =
+              members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
     }
+  // The plan's searches: P_search_, or P_kd_tree_ when forced; a set's second
+  // search of one structure P_search_2_ (sums apart from the first's).
+  std::map<std::pair<int, SearchChoice>, int> seen;
+  for (const PlannedSearch& search : facts_.searches.searches) {
+    const std::string& set = m_.sets[search.set].name;
+    const int n = ++seen[{search.set, search.structure}];
+    searches_.push_back(members_.fresh((search.structure == SearchChoice::Auto
+                                            ? set + "_search"
+                                            : set + "_" + search_choice_name(search.structure)) +
+                                       (n > 1 ? "_" + std::to_string(n) : "") + "_"));
+  }
 }
 
-const std::string& ModelEmitter::search_for(int set, const Statement& st) const {
-  return searches_.at({set, st.schedule.search});
+const std::string& ModelEmitter::search_for(int sum) const {
+  return searches_.at(facts_.searches.groups.at(facts_.searches.group_of.at(sum)).search);
 }
 
 void ModelEmitter::header() {
@@ -422,13 +424,27 @@ void ModelEmitter::search_report() {
   line("// Each neighbour search: what it serves, its structure, its builds so far.");
   line("std::vector<partc::SearchReport> search_report() const {");
   line("std::vector<partc::SearchReport> report;");
-  for (const auto& [key, search] : searches_)
-    linef("report.push_back({{\"sums over {0}{1}\", {2}.describe(), {2}.build_count()}});",
-          m_.sets[key.first].name,
-          key.second == SearchChoice::Auto
+  // A set's searches of one structure are told apart by the lines they serve.
+  std::map<std::pair<int, SearchChoice>, int> alike;
+  for (const PlannedSearch& search : facts_.searches.searches)
+    ++alike[{search.set, search.structure}];
+  for (std::size_t k = 0; k < searches_.size(); ++k) {
+    const PlannedSearch& search = facts_.searches.searches[k];
+    std::set<int> lines;
+    for (const SearchGroup& group : facts_.searches.groups)
+      if (group.search == static_cast<int>(k))
+        for (const auto& [g, s] : group.statements) lines.insert(m_.stages[g].statements[s].line);
+    const std::string at =
+        alike[{search.set, search.structure}] == 1
+            ? ""
+            : fmt::format(" at line{} {}", lines.size() > 1 ? "s" : "", fmt::join(lines, ", "));
+    linef("report.push_back({{\"sums over {}{}{}\", {}.describe(), {}.build_count()}});",
+          m_.sets[search.set].name, at,
+          search.structure == SearchChoice::Auto
               ? ""
-              : std::string(" (schedule: ") + search_choice_name(key.second) + ")",
-          search);
+              : std::string(" (schedule: ") + search_choice_name(search.structure) + ")",
+          searches_[k], searches_[k]);
+  }
   for (const auto& [st, lists] : lists_)
     linef("if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count()}});", lists,
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
@@ -703,15 +719,20 @@ void ModelEmitter::state() {
       linef("std::int64_t {} = 0;  // particles of {} that left through an open face", left_[s],
             m_.sets[s].name);
   }
-  for (const auto& [key, search] : searches_) {
-    if (key.second == SearchChoice::Auto)
-      linef("partc::NeighbourSearch<{}> {};  // over {}", m_.dim, search, m_.sets[key.first].name);
-    else
-      linef(
-          "partc::NeighbourSearch<{0}> {1}{{partc::NeighbourSearch<{0}>::Kind::{2}}};  // schedule",
-          m_.dim, search, search_choice_name(key.second));
-    linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", search);
-    linef("double {}radius_ = 0;", search);
+  for (std::size_t k = 0; k < searches_.size(); ++k) {
+    const PlannedSearch& search = facts_.searches.searches[k];
+    const std::string type = fmt::format("partc::NeighbourSearch<{}>", m_.dim);
+    std::vector<std::string> arguments;
+    if (search.structure != SearchChoice::Auto)
+      arguments.push_back(type + "::Kind::" + search_choice_name(search.structure));
+    else if (!search.reorders)
+      arguments.push_back(type + "::default_margin");
+    if (!search.reorders) arguments.push_back(type + "::Order::keep");
+    linef("{} {}{};  // over {}{}", type, searches_[k],
+          arguments.empty() ? "" : fmt::format("{{{}}}", fmt::join(arguments, ", ")),
+          m_.sets[search.set].name, search.structure == SearchChoice::Auto ? "" : ", schedule");
+    linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", searches_[k]);
+    linef("double {}radius_ = 0;", searches_[k]);
   }
   for (const auto& [st, lists] : lists_)
     linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,

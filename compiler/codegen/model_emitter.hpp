@@ -101,13 +101,10 @@ class ModelEmitter {
   std::string source_line(Location loc) const;
   std::string source_text(Location loc) const { return one_line(file_.slice(loc)); }
 
-  // ---- searches: one per set that neighbourhood sums run over, and per
-  // search structure the schedule forces on some of them -----------------
-
-  using SearchKey = std::pair<int, SearchChoice>;  // (set searched, structure)
+  // ---- searches: as the search plan says (analysis/search_plan.cpp) -----
 
   void plan_searches();
-  const std::string& search_for(int set, const Statement& st) const;
+  const std::string& search_for(int sum) const;  // the search serving an Accumulate id
 
   // ---- header -----------------------------------------------------------
 
@@ -164,8 +161,8 @@ class ModelEmitter {
   void kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
                         NameTable& locals);
   std::string buffer_member(int s, int var);
-  void refresh_search(int s, const std::string& search, const std::vector<std::string>& radii,
-                      const std::string& local);
+  void refresh_search(int group, const Statement& st, const ExpressionNames& names,
+                      NameTable& locals);
   std::string radius_expression(const SearchFact& fact, const Statement& st,
                                 const ExpressionNames& names) const;
 
@@ -185,6 +182,7 @@ class ModelEmitter {
     int set;
     SearchFact::Kind kind;
     bool once;  // the same for every i (uniform_sums.cpp): run before the particle loop
+    int search;  // Neighbours: SearchPlan::searches index; sums apart are not fused
     std::vector<const Accumulate*> members;
   };
   std::vector<Loop> fuse_loops(const std::vector<const Accumulate*>& accumulations,
@@ -218,7 +216,7 @@ class ModelEmitter {
   std::vector<std::string> set_member_, epoch_, set_type_, const_member_, function_member_;
   std::vector<std::string> left_;  // per set, with open faces: how many left
   std::map<int, std::string> compensation_;  // accumulation id -> its Neumaier error's local
-  std::map<SearchKey, std::string> searches_;
+  std::vector<std::string> searches_;        // per SearchPlan::searches
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;

@@ -66,8 +66,8 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
       if (value.empty()) value = "1.0";
       const std::string entry = add(j, value);
       if (op.sparse) {
-        linef("{}.for_each_near({}, [&](std::size_t {}, const Vec&{}) {{", search_for(st.set, st),
-              i, j, dx.dx ? " dx" : "");
+        linef("{}.for_each_near({}, [&](std::size_t {}, const Vec&{}) {{", search_for(acc.id), i, j,
+              dx.dx ? " dx" : "");
       } else {
         linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", j, count);
         if (dx.dx) {

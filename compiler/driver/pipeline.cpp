@@ -1,6 +1,9 @@
 #include "driver/pipeline.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 #include "analysis/schedule.hpp"
 #include "grammar/parser.hpp"
@@ -29,6 +32,8 @@ Compilation analyse(SourceFile& file, const SceneOptions& scene) {
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known.
   check_schedule(c.model, c.facts.neighbourhoods);
+  // Which sums share a search, and at what radius: needs the schedule checked.
+  c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
   // Terms that are NaN or Inf for coincident particles: warnings only.
   c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
@@ -36,6 +41,41 @@ Compilation analyse(SourceFile& file, const SceneOptions& scene) {
   return c;
 }
 
+// Each search of the plan: its set, structure and order, then per stretch
+// between position changes the sums it serves, the radius it is built at,
+// and why they share it (or have it apart from others).
+static std::string explain_search_plan(const Compilation& c) {
+  const SearchPlan& plan = c.facts.searches;
+  if (plan.searches.empty()) return "";
+  std::string out =
+      "search plan (one build per position change and search, at the largest "
+      "radius of the sums it serves; each sum keeps its own cutoff test):\n";
+  for (std::size_t k = 0; k < plan.searches.size(); ++k) {
+    const PlannedSearch& search = plan.searches[k];
+    out += fmt::format("  search {}: over {}{}; {}\n", k + 1, c.model.sets[search.set].name,
+                       search.structure == ir::SearchChoice::Auto
+                           ? ""
+                           : std::string(", always ") + ir::search_choice_name(search.structure),
+                       search.order_reason);
+    for (const SearchGroup& group : plan.groups) {
+      if (group.search != static_cast<int>(k)) continue;
+      std::vector<int> lines;
+      for (const auto& [g, s] : group.statements)
+        if (std::find(lines.begin(), lines.end(), c.model.stages[g].statements[s].line) ==
+            lines.end())
+          lines.push_back(c.model.stages[g].statements[s].line);
+      out += fmt::format(
+          "    line{} {}: radius {}{}: {}\n", lines.size() > 1 ? "s" : "", fmt::join(lines, ", "),
+          group.radii.size() > 1 ? fmt::format("max({})", fmt::join(group.radii, ", "))
+                                 : group.radii.front(),
+          group.built_after >= 0
+              ? fmt::format(", built after search {}", plan.groups[group.built_after].search + 1)
+              : "",
+          group.reason);
+    }
+  }
+  return out;
+}
 
 namespace {
 
@@ -114,6 +154,11 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                                       "enough for one thread; else per-particle queries: ")
                              : "both ways: ") +
                pairs.reason + "\n";
+        if (!st.schedule.skin) {
+          const int group = c.facts.searches.group_of.at(acc->id);
+          out += fmt::format("    search {} (search plan below)\n",
+                             c.facts.searches.groups[group].search + 1);
+        }
         if (st.schedule.skin)
           out += "    schedule: Verlet lists with skin " +
                  std::string(file.slice(st.schedule.skin->loc)) +
@@ -134,7 +179,7 @@ std::string explain(const Compilation& c, const SourceFile& file) {
       }
     }
   }
-  return out;
+  return out + explain_search_plan(c);
 }
 
 }  // namespace partc

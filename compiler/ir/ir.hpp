@@ -329,8 +329,14 @@ const char* search_choice_name(SearchChoice c);  // as .part spells it
 // for a sparse one.
 enum class SolverChoice { Auto, Lu, Cg, Bicgstab, Gmres };
 const char* solver_choice_name(SolverChoice c);  // as .part spells it
+// Whether a statement's neighbourhood sums share their set's search with
+// other statements' (analysis/search_plan.cpp): as the cost model decides,
+// always (at the largest radius), or never (a search of their own).
+enum class Sharing { Auto, Shared, Separate };
+const char* sharing_name(Sharing s);  // as .part spells it
 struct Schedule {
   SearchChoice search = SearchChoice::Auto;
+  Sharing sharing = Sharing::Auto;
   Expr skin;  // non-null: Verlet lists with this skin, reused across steps
   SolverChoice solver = SolverChoice::Auto;
   Expr tolerance;       // of an iterative solver; null: 1e-10

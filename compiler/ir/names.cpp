@@ -83,6 +83,15 @@ const char* search_choice_name(SearchChoice c) {
   return "?";
 }
 
+const char* sharing_name(Sharing s) {
+  switch (s) {
+    case Sharing::Auto: return "auto";
+    case Sharing::Shared: return "shared";
+    case Sharing::Separate: return "separate";
+  }
+  return "?";
+}
+
 const char* solver_choice_name(SolverChoice c) {
   switch (c) {
     case SolverChoice::Auto: return "auto";

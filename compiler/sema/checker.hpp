@@ -150,6 +150,7 @@ class Sema {
   std::optional<PrecisionRequest> model_precision_;
   std::map<std::pair<int, int>, PrecisionRequest> variable_precision_;  // (set, var) ->
   ir::SearchChoice search_choice(const ast::Chain& value);
+  ir::Sharing sharing_choice(const ast::Chain& value);
   ir::SolverChoice solver_choice(const ast::Chain& value);
   static std::vector<std::string> var_names(const ir::ParticleSet& set);
 

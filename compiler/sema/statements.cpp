@@ -350,6 +350,8 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       fail(option.key.loc, "option " + quoted(option.key.name) + " given twice");
     if (option.key.name == "search") {
       st.schedule.search = search_choice(option.value);
+    } else if (option.key.name == "sharing") {
+      st.schedule.sharing = sharing_choice(option.value);
     } else if (option.key.name == "skin") {
       Scope scope;
       scope.context = "a skin";
@@ -390,9 +392,10 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
     } else {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
-               suggestion(option.key.name,
-                          {"search", "skin", "summation", "solver", "tol", "max_iterations"}),
-           "options: search = auto | brute_force | cell_list | kd_tree; skin = LENGTH; "
+               suggestion(option.key.name, {"search", "sharing", "skin", "summation", "solver",
+                                            "tol", "max_iterations"}),
+           "options: search = auto | brute_force | cell_list | kd_tree; "
+           "sharing = auto | shared | separate; skin = LENGTH; "
            "summation = plain | compensated; for a solve: solver = auto | lu | cg | bicgstab | "
            "gmres, tol = 1e-10, max_iterations = K");
     }
@@ -423,7 +426,7 @@ void Sema::check_precision_request(const ast::ScheduleItem& item) {
   for (const ast::ScheduleOption& option : item.options) {
     if (option.key.name != "precision") {
       static const std::vector<std::string> statement_options = {
-          "search", "skin", "summation", "solver", "tol", "max_iterations"};
+          "search", "sharing", "skin", "summation", "solver", "tol", "max_iterations"};
       const bool of_statements = std::find(statement_options.begin(), statement_options.end(),
                                            option.key.name) != statement_options.end();
       if (!of_statements)
@@ -499,6 +502,16 @@ ir::SearchChoice Sema::search_choice(const ast::Chain& value) {
     if (id && id->name == ir::search_choice_name(c)) return c;
   fail(value.loc, "unknown search " + quoted(source_text(value.loc)),
        "searches: auto, brute_force, cell_list, kd_tree");
+}
+
+ir::Sharing Sema::sharing_choice(const ast::Chain& value) {
+  const ast::Operand* sole = ast::sole_operand(value);
+  const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+  for (ir::Sharing s : {ir::Sharing::Auto, ir::Sharing::Shared, ir::Sharing::Separate})
+    if (id && id->name == ir::sharing_name(s)) return s;
+  fail(value.loc, "sharing is auto, shared or separate, not " + quoted(source_text(value.loc)),
+       "shared: one search with other statements' sums over the set, at the largest radius; "
+       "separate: a search of this statement's own");
 }
 
 std::vector<std::string> Sema::var_names(const ir::ParticleSet& set) {

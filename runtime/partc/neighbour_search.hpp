@@ -24,6 +24,13 @@
 // taken before build are stale afterwards (ids are not). cell_count() is 0 off
 // the cell-list path. The clustered test builds the cell list first (cheap) to
 // measure it, so a tree build costs one cell-list build more.
+//
+// Order::keep (for a set whose order something else owns: its Verlet lists,
+// whose slots a reorder would scramble and so rebuild, or another search of
+// the same set) builds without permuting the set and maps each reported j
+// back to the set's index, and each index asked into the sorted order: the
+// same neighbours, dx and order as Order::reorder, one index load more per
+// neighbour; the set's arrays are then read out of spatial order.
 #pragma once
 
 #include <cstddef>
@@ -78,11 +85,16 @@ class NeighbourSearch {
   // slower than the cell list (32000 uniform points, radius 2.8, 79 neighbours).
   static constexpr double kd_tree_clustering = 4.0;
 
-  explicit NeighbourSearch(double margin = default_margin) : margin_(margin) {}
+  // Whether build may permute the set (reorder) or leaves it as it is (keep).
+  enum class Order { reorder, keep };
+
+  explicit NeighbourSearch(double margin = default_margin, Order order = Order::reorder)
+      : margin_(margin), keep_order_(order == Order::keep) {}
   // Always this structure (a model's schedule said so), except that a radius
   // over half a periodic length takes brute force (see build). A forced cell
   // list also serves periodic sides of fewer than 3 cells, in its exact mode.
-  explicit NeighbourSearch(Kind forced) : forced_(forced) {}
+  explicit NeighbourSearch(Kind forced, Order order = Order::reorder)
+      : forced_(forced), keep_order_(order == Order::keep) {}
 
   template <class Set>
   void build(const Domain<D>& domain, double requested_radius, Set& set) {
@@ -113,35 +125,27 @@ class NeighbourSearch {
       if (forced_ == Kind::cell_list || examined <= kd_tree_above_examined ||
           examined <= kd_tree_clustering * static_cast<double>(n) * grid.visited_fraction()) {
         kind_ = Kind::cell_list;
-        set.permute(cell_list_.order());
+        adopt_order(cell_list_.order(), set);
         return;
       }
     }
     kind_ = Kind::kd_tree;
     kd_tree_.build(domain, radius, set.positions());
-    set.permute(kd_tree_.order());
+    adopt_order(kd_tree_.order(), set);
   }
 
   template <class F>
   void for_each_near(const Vec<D>& q, F&& f) const {
-    if (kind_ == Kind::cell_list)
-      cell_list_.for_each_near(q, f);
-    else if (kind_ == Kind::kd_tree)
-      kd_tree_.for_each_near(q, f);
-    else
-      brute_force_.for_each_near(q, f);
+    if (sorted_apart()) return sorted_near(q, in_set_order(f));
+    sorted_near(q, f);
   }
 
   // f(j, point) for every particle whose position (wrapped into the periodic
   // box) lies in [lo, hi] componentwise; the box itself does not wrap.
   template <class F>
   void for_each_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
-    if (kind_ == Kind::cell_list)
-      cell_list_.for_each_in_box(lo, hi, f);
-    else if (kind_ == Kind::kd_tree)
-      kd_tree_.for_each_in_box(lo, hi, f);
-    else
-      brute_force_.for_each_in_box(lo, hi, f);
+    if (sorted_apart()) return sorted_in_box(lo, hi, in_set_order(f));
+    sorted_in_box(lo, hi, f);
   }
 
   // As for_each_near(p[i], f) for particle i of the set as of the last build
@@ -149,21 +153,16 @@ class NeighbourSearch {
   // cell-list path (OrderedCellList::for_each_near(k, f)).
   template <class F>
   void for_each_near(std::size_t i, F&& f) const {
-    if (kind_ == Kind::cell_list)
-      cell_list_.for_each_near(i, f);
-    else if (kind_ == Kind::kd_tree)
-      kd_tree_.for_each_near(kd_tree_.point(i), f);
-    else
-      brute_force_.for_each_near(i, f);
+    if (sorted_apart()) return sorted_near(rank_[i], in_set_order(f));
+    sorted_near(i, f);
   }
 
-  // The same for the neighbours j > i only: each pair once, from its first particle.
+  // The same for the neighbours j > i only: each pair once, from its first
+  // particle (with Order::keep, "after" in the search's sorted order).
   template <class F>
   void for_each_near_after(std::size_t i, F&& f) const {
-    if (kind_ == Kind::cell_list) return cell_list_.for_each_near_after(i, f);
-    for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
-      if (j > i) f(j, dx);
-    });
+    if (sorted_apart()) return sorted_near_after(rank_[i], in_set_order(f));
+    sorted_near_after(i, f);
   }
 
   // Each pair once (the pair walk of slab_schedule.hpp): f(i, pairs), pairs(g)
@@ -174,17 +173,15 @@ class NeighbourSearch {
   // and evaluates half as many terms. Nothing for a NaN point, which no query
   // reports. On the cell-list path in parallel slabs when the build allowed it
   // (OrderedCellList::for_each_pair), with results independent of the thread
-  // count; else serially, i ascending.
+  // count; else serially, i ascending. With Order::keep, i and j are mapped to
+  // the set's indices (j > i in the sorted order); the mapping is one to one,
+  // so two slabs still never touch one particle.
   template <class F>
   void for_each_pair(F&& f) const {
-    if (kind_ == Kind::cell_list) return cell_list_.for_each_pair(f);
-    if (kind_ == Kind::brute_force) return brute_force_.for_each_pair(f);
-    for (std::size_t i = 0; i < size_; ++i)
-      if (is_finite(kd_tree_.point(i)))
-        f(i, [&](auto&& g) {
-          g(i, Vec<D>::zero());
-          for_each_near_after(i, g);
-        });
+    if (!sorted_apart()) return sorted_pairs(f);
+    sorted_pairs([&](std::size_t i, const auto& pairs) {
+      f(order_[i], [&](auto&& g) { pairs(in_set_order(g)); });
+    });
   }
 
   // Whether such sums should take for_each_pair over per-particle queries:
@@ -204,17 +201,19 @@ class NeighbourSearch {
   }
 
   Kind kind() const { return kind_; }
+  bool keeps_order() const { return keep_order_; }
   std::size_t build_count() const { return build_count_; }
   // The structure of the last build, for people: "cell list", ...
   std::string describe() const {
     if (build_count_ == 0) return "not built yet";
+    const std::string kept = keep_order_ ? ", set order kept" : "";
     switch (kind_) {
       case Kind::cell_list: {
         const std::size_t slabs = pair_slabs().count();
         return "cell list, " + std::to_string(cell_count()) + " cells" +
-               (slabs > 1 ? ", pair walks in " + std::to_string(slabs) + " slabs" : "");
+               (slabs > 1 ? ", pair walks in " + std::to_string(slabs) + " slabs" : "") + kept;
       }
-      case Kind::kd_tree: return "k-d tree";
+      case Kind::kd_tree: return "k-d tree" + kept;
       case Kind::brute_force: break;
     }
     return brute_force_.all_images() ? "brute force, every periodic image" : "brute force";
@@ -222,8 +221,81 @@ class NeighbourSearch {
   std::size_t cell_count() const { return kind_ == Kind::cell_list ? cell_list_.cell_count() : 0; }
 
  private:
+  // The structure's own order: the set's after a reordering build.
+  template <class F>
+  void sorted_near(const Vec<D>& q, F&& f) const {
+    if (kind_ == Kind::cell_list)
+      cell_list_.for_each_near(q, f);
+    else if (kind_ == Kind::kd_tree)
+      kd_tree_.for_each_near(q, f);
+    else
+      brute_force_.for_each_near(q, f);
+  }
+
+  template <class F>
+  void sorted_in_box(const Vec<D>& lo, const Vec<D>& hi, F&& f) const {
+    if (kind_ == Kind::cell_list)
+      cell_list_.for_each_in_box(lo, hi, f);
+    else if (kind_ == Kind::kd_tree)
+      kd_tree_.for_each_in_box(lo, hi, f);
+    else
+      brute_force_.for_each_in_box(lo, hi, f);
+  }
+
+  template <class F>
+  void sorted_near(std::size_t k, F&& f) const {
+    if (kind_ == Kind::cell_list)
+      cell_list_.for_each_near(k, f);
+    else if (kind_ == Kind::kd_tree)
+      kd_tree_.for_each_near(kd_tree_.point(k), f);
+    else
+      brute_force_.for_each_near(k, f);
+  }
+
+  template <class F>
+  void sorted_near_after(std::size_t k, F&& f) const {
+    if (kind_ == Kind::cell_list) return cell_list_.for_each_near_after(k, f);
+    sorted_near(k, [&](std::size_t j, const Vec<D>& dx) {
+      if (j > k) f(j, dx);
+    });
+  }
+
+  template <class F>
+  void sorted_pairs(F&& f) const {
+    if (kind_ == Kind::cell_list) return cell_list_.for_each_pair(f);
+    if (kind_ == Kind::brute_force) return brute_force_.for_each_pair(f);
+    for (std::size_t k = 0; k < size_; ++k)
+      if (is_finite(kd_tree_.point(k)))
+        f(k, [&](auto&& g) {
+          g(k, Vec<D>::zero());
+          sorted_near_after(k, g);
+        });
+  }
+
+  // Order::keep on a path that sorts (brute force never does): indices differ.
+  bool sorted_apart() const { return keep_order_ && kind_ != Kind::brute_force; }
+
+  // f, called with the set's index of the sorted point j.
+  template <class F>
+  auto in_set_order(F& f) const {
+    return [this, &f](std::size_t j, const Vec<D>& x) { f(order_[j], x); };
+  }
+
+  // Reorder the set (it then matches the structure), or keep its order and
+  // remember the map both ways.
+  template <class Set>
+  void adopt_order(const std::vector<std::size_t>& order, Set& set) {
+    if (!keep_order_) return set.permute(order);
+    order_ = order;
+    rank_.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) rank_[order[k]] = k;
+  }
+
+ private:
   double margin_ = default_margin;
   std::optional<Kind> forced_;
+  bool keep_order_ = false;
+  std::vector<std::size_t> order_, rank_;  // Order::keep: sorted k -> set index, and back
   Kind kind_ = Kind::brute_force;
   std::size_t build_count_ = 0;
   std::size_t size_ = 0;

@@ -156,7 +156,11 @@ bool check_all_structures(const Case<D>& c) {
       {"NeighbourSearch(default margin)", Search()},
       {"NeighbourSearch(forced brute force)", Search(Search::Kind::brute_force)},
       {"NeighbourSearch(forced cell list)", Search(Search::Kind::cell_list)},
-      {"NeighbourSearch(forced k-d tree)", Search(Search::Kind::kd_tree)}};
+      {"NeighbourSearch(forced k-d tree)", Search(Search::Kind::kd_tree)},
+      // Keeping the set's order: the same answers, by the set's indices.
+      {"NeighbourSearch(margin 0, order kept)", Search(0.0, Search::Order::keep)},
+      {"NeighbourSearch(forced k-d tree, order kept)",
+       Search(Search::Kind::kd_tree, Search::Order::keep)}};
   for (auto [name, s] : searches) {
     partc::ParticleSet<D, P_origin> set;
     for (const auto& p : c.points) {
@@ -167,6 +171,7 @@ bool check_all_structures(const Case<D>& c) {
     REQUIRE(set.size() == c.points.size());
     for (std::size_t k = 0; k < set.size(); ++k) {  // the set was permuted as a whole
       REQUIRE(set.template get<P_origin>()[k] == set.ids()[k]);
+      if (s.keeps_order()) REQUIRE(set.ids()[k] == static_cast<std::int64_t>(k));
       const Vec<D>& original = c.points[static_cast<std::size_t>(set.ids()[k])];
       REQUIRE(std::memcmp(&set.positions()[k], &original, sizeof original) == 0);  // NaN too
     }
