@@ -3,14 +3,21 @@
 column of the first's final state is in the second's, with the same text:
 the same numbers bit for bit (the driver writes 17 significant digits).
 
-    compare_runs.py [--tolerance T] PROGRAM_A PROGRAM_B [ARGS...]
+    compare_runs.py [--tolerance T] [--rename A=B]... [--ignore COLUMN]...
+                    PROGRAM_A PROGRAM_B [ARGS...]
 
+--rename A=B gives PROGRAM_B "--set B=VALUE" where PROGRAM_A gets
+"--set A=VALUE" (a model's parameter g is its scene's gravity_z.g).
+--ignore COLUMN leaves out a column of PROGRAM_A that PROGRAM_B does not
+store (a value its scene computes where it is used); for a vector, all
+its components (--ignore f leaves out f_0, f_1, f_2).
 With --tolerance, values may differ by T times the largest magnitude of
 their column instead (for two models that sum the same terms in another
 order). Used for scenes against the single-file models they reproduce: the
 scene may store more (its force channel), never different values.
 """
 import csv
+import re
 import subprocess
 import sys
 import tempfile
@@ -32,15 +39,29 @@ def main():
         sys.exit(__doc__)
     argv = sys.argv[1:]
     tolerance = 0.0
-    if argv[0] == "--tolerance":
-        tolerance, argv = float(argv[1]), argv[2:]
+    renames = {}
+    ignored = set()
+    while argv and argv[0] in ("--tolerance", "--rename", "--ignore"):
+        if argv[0] == "--tolerance":
+            tolerance = float(argv[1])
+        elif argv[0] == "--ignore":
+            ignored.add(argv[1])
+        else:
+            name_a, _, name_b = argv[1].partition("=")
+            renames[name_a] = name_b
+        argv = argv[2:]
     a, b, args = argv[0], argv[1], argv[2:]
+    args_b = []
+    for arg in args:
+        name, equals, value = arg.partition("=")
+        args_b.append(renames[name] + equals + value if equals and name in renames else arg)
     with tempfile.TemporaryDirectory() as folder:
         rows_a = final_state(a, args, folder)
-        rows_b = final_state(b, args, folder)
+        rows_b = final_state(b, args_b, folder)
     if len(rows_a) != len(rows_b):
         sys.exit(f"{len(rows_a)} particles against {len(rows_b)}")
-    columns = list(rows_a[0].keys())
+    columns = [c for c in rows_a[0].keys() if re.sub(r"_[0-9]+$", "", c) not in ignored
+               and c not in ignored]
     missing = [c for c in columns if c not in rows_b[0]]
     if missing:
         sys.exit(f"{b} does not write {missing}")
