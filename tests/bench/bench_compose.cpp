@@ -55,7 +55,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -74,6 +73,7 @@
 #include "compose_separate_lists.hpp"
 #include "compose_separate_one_radius_cells.hpp"
 #include "compose_separate_one_radius_lists.hpp"
+#include "lammps_log.hpp"
 #include "lj_melt_setup.hpp"
 #include "timing.hpp"
 
@@ -113,57 +113,27 @@ struct State {
 };
 
 // Hand-written forces and energies: LJ truncated at rc_lj (lj/cut) and
-// Coulomb truncated at rc_coul (coul/cut), each pair from both sides, with a
-// cell list of cubic cells at least the larger cutoff wide (11 a side for
-// 3.0, so the 27-cell stencil never visits a cell twice) and the minimum
-// image. Plain, as lj_melt_setup.hpp's: it runs a few times, not per step.
+// Coulomb truncated at rc_coul (coul/cut), each pair from both sides, through
+// lj_melt_setup.hpp's cell list at the larger cutoff. Plain: it runs a few
+// times, not per step.
 void compute_forces(State& s, double rc_coul) {
-  const double L = lj_melt_bench::box_length();
-  const double reach = std::max(rc_lj, rc_coul);
-  const int n = static_cast<int>(L / reach);
-  const double width = L / n;
-  const auto cell_of = [&](double x) {
-    const int c = static_cast<int>(std::floor(x / width));
-    return ((c % n) + n) % n;
-  };
-  const auto index = [n](int x, int y, int z) {
-    return (static_cast<std::size_t>(((x + n) % n) * n + (y + n) % n)) * n + (z + n) % n;
-  };
-  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(n) * n * n);
-  for (std::size_t i = 0; i < s.size(); ++i)
-    cells[index(cell_of(s.position[i][0]), cell_of(s.position[i][1]), cell_of(s.position[i][2]))]
-        .push_back(i);
   s.f_lj.assign(s.size(), Vec3{0, 0, 0});
   s.f_coulomb.assign(s.size(), Vec3{0, 0, 0});
   double e_lj = 0.0, e_coulomb = 0.0;  // every pair twice
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const Vec3& pi = s.position[i];
-    const int cx = cell_of(pi[0]), cy = cell_of(pi[1]), cz = cell_of(pi[2]);
-    for (int ox = -1; ox <= 1; ++ox)
-      for (int oy = -1; oy <= 1; ++oy)
-        for (int oz = -1; oz <= 1; ++oz)
-          for (const std::size_t j : cells[index(cx + ox, cy + oy, cz + oz)]) {
-            if (j == i) continue;
-            Vec3 d;
-            for (int k = 0; k < 3; ++k) {
-              d[k] = s.position[j][k] - pi[k];
-              d[k] -= L * std::nearbyint(d[k] / L);
-            }
-            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if (r2 < rc_lj * rc_lj) {
-              const double inv6 = 1.0 / (r2 * r2 * r2);
-              e_lj += 4.0 * inv6 * (inv6 - 1.0);
-              const double f_over_r = 24.0 * inv6 * (2.0 * inv6 - 1.0) / r2;
-              for (int k = 0; k < 3; ++k) s.f_lj[i][k] -= f_over_r * d[k];
-            }
-            if (r2 < rc_coul * rc_coul) {
-              const double r = std::sqrt(r2);
-              e_coulomb += s.q[i] * s.q[j] / r;
-              const double f_over_r = s.q[i] * s.q[j] / (r2 * r);
-              for (int k = 0; k < 3; ++k) s.f_coulomb[i][k] -= f_over_r * d[k];
-            }
-          }
-  }
+  const auto add = [&](std::size_t i, std::size_t j, const Vec3& d, double r2) {
+    if (r2 < rc_lj * rc_lj) {
+      const lj_melt_bench::LjTerm lj = lj_melt_bench::lj_term(r2);
+      e_lj += lj.energy;
+      for (int k = 0; k < 3; ++k) s.f_lj[i][k] -= lj.f_over_r * d[k];
+    }
+    if (r2 < rc_coul * rc_coul) {
+      const double r = std::sqrt(r2);
+      e_coulomb += s.q[i] * s.q[j] / r;
+      const double f_over_r = s.q[i] * s.q[j] / (r2 * r);
+      for (int k = 0; k < 3; ++k) s.f_coulomb[i][k] -= f_over_r * d[k];
+    }
+  };
+  lj_melt_bench::for_each_pair_within(s.position, std::max(rc_lj, rc_coul), add);
   s.e_lj = 0.5 * e_lj;
   s.e_coulomb = 0.5 * e_coulomb;
   double twice = 0.0;
@@ -314,14 +284,13 @@ std::vector<Vec3> reference_force(const State& s, Physics physics) {
   return f;
 }
 
-struct Thermo {
-  int step;
-  double temperature, e_lj, e_coulomb, total;  // energies per atom
-};
+// Thermo rows, LAMMPS's and partc's (computed here) alike: E_vdwl is LJ, E_coul Coulomb.
+using bench::Thermo;
 
 Thermo thermo_of(int step, const State& s) {
   const double n = static_cast<double>(s.size());
-  return {step, s.temperature(), s.e_lj / n, s.e_coulomb / n, (s.kinetic + s.potential()) / n};
+  return {step,       s.temperature(), s.potential() / n,
+          s.e_lj / n, s.e_coulomb / n, (s.kinetic + s.potential()) / n};
 }
 
 struct Timed {
@@ -340,14 +309,6 @@ Timed time_run(const Variant& v, const State& start, double rc_coul) {
   t.searches = run->search_report();
   return t;
 }
-
-// What bench_compose needs from a LAMMPS log of this system.
-struct LammpsLog {
-  std::string pair_style;  // the arguments of its pair_style line
-  double loop_seconds = -1.0, pair_seconds = -1.0;
-  int builds = -1;
-  std::vector<Thermo> thermo;
-};
 
 std::vector<std::string> words_of(const std::string& text) {
   std::istringstream in(text);
@@ -369,44 +330,9 @@ bool same_style(const std::string& a, const std::string& b) {
   return true;
 }
 
-std::optional<LammpsLog> read_lammps_log(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  LammpsLog log;
-  std::vector<std::string> columns;  // of the thermo table being read, else empty
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string first;
-    words >> first;
-    if (first == "pair_style") {
-      std::getline(words >> std::ws, log.pair_style);
-    } else if (first == "Step") {
-      columns = {first};
-      for (std::string c; words >> c;) columns.push_back(c);
-    } else if (first == "Loop") {
-      std::sscanf(line.c_str(), "Loop time of %lf", &log.loop_seconds);
-      columns.clear();
-    } else if (first == "Pair" && line.find('|') != std::string::npos) {
-      std::sscanf(line.c_str() + line.find('|') + 1, "%lf", &log.pair_seconds);
-    } else if (line.rfind("Neighbor list builds = ", 0) == 0) {
-      log.builds = std::atoi(line.c_str() + 23);
-    } else if (!columns.empty()) {
-      std::map<std::string, double> row;
-      std::istringstream values(line);
-      for (const std::string& c : columns) values >> row[c];
-      if (!values) continue;
-      log.thermo.push_back({static_cast<int>(row["Step"]), row["Temp"], row["E_vdwl"],
-                            row["E_coul"], row["TotEng"]});
-    }
-  }
-  if (log.loop_seconds < 0 || log.thermo.empty() || log.pair_style.empty()) return std::nullopt;
-  return log;
-}
-
 // The logs of one pair style.
 struct LammpsStyle {
-  LammpsLog first;
+  bench::LammpsLog first;
   std::vector<double> loop_seconds;
 };
 
@@ -425,12 +351,6 @@ std::vector<LammpsRow> lammps_rows(double rc_coul) {
           {"LAMMPS hybrid/overlay", overlay},
           {"LAMMPS lj/cut alone", lj},
           {"LAMMPS coul/cut alone", coulomb}};
-}
-
-const Thermo* at_step(const std::vector<Thermo>& thermo, int step) {
-  for (const Thermo& t : thermo)
-    if (t.step == step) return &t;
-  return nullptr;
 }
 
 // The starting state as a LAMMPS data file (atom_style charge), ids 1..N in id order.
@@ -620,9 +540,10 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
   std::printf("%5s %10s %16s %16s %18s %18s %10s\n", "step", "T", "E_lj", "E_coulomb", "E_tot",
               "LAMMPS E_tot", "diff");
   for (const Thermo& t : ours) {
-    const Thermo* l = theirs == lammps.end() ? nullptr : at_step(theirs->first.thermo, t.step);
-    std::printf("%5d %10.6f %16.10f %16.10f %18.12f %18s %10s\n", t.step, t.temperature, t.e_lj,
-                t.e_coulomb, t.total, l ? cell("%.12f", l->total).c_str() : "-",
+    const Thermo* l =
+        theirs == lammps.end() ? nullptr : bench::at_step(theirs->first.thermo, t.step);
+    std::printf("%5d %10.6f %16.10f %16.10f %18.12f %18s %10s\n", t.step, t.temperature, t.e_vdwl,
+                t.e_coul, t.total, l ? cell("%.12f", l->total).c_str() : "-",
                 l ? cell("%+.1e", t.total - l->total).c_str() : "-");
   }
 }
@@ -633,8 +554,8 @@ int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--lammps-data") == 0) return write_lammps_data(argv[2]);
   std::vector<LammpsStyle> lammps;
   for (int a = 1; a < argc; ++a) {
-    const std::optional<LammpsLog> log = read_lammps_log(argv[a]);
-    if (!log) {
+    const std::optional<bench::LammpsLog> log = bench::read_lammps_log(argv[a]);
+    if (!log || log->pair_style.empty()) {
       std::fprintf(stderr,
                    "bench_compose: %s: not a LAMMPS log with a pair_style, a thermo table and a "
                    "loop time\n",

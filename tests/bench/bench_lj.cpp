@@ -36,13 +36,11 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "lammps_log.hpp"
 // lj_melt_setup.hpp includes the generated lj_melt.hpp, which has no include
 // guard: including it here as well would define LjMelt twice.
 #include "timing.hpp"
@@ -61,10 +59,8 @@ constexpr int thermo_every = 10;
 // relative per term. A missing or extra pair changes a force by a whole term.
 constexpr double force_tolerance = 1e-10;
 
-struct Thermo {
-  int step;
-  double temperature, potential_per_atom, total_per_atom;
-};
+// Thermo rows, LAMMPS's and partc's (computed here) alike.
+using bench::Thermo;
 
 // One run of the 100 steps as partc does it.
 struct PartcRun {
@@ -76,7 +72,7 @@ struct PartcRun {
 
 Thermo thermo_of(int step, const MeltState& s) {
   const double n = static_cast<double>(s.size());
-  return {step, s.temperature(), s.potential / n, s.total_energy() / n};
+  return {step, s.temperature(), s.potential / n, s.potential / n, 0.0, s.total_energy() / n};
 }
 
 // Timed: only step() is inside the clock. Untimed (physics): thermo every
@@ -120,65 +116,11 @@ PartcRun run_partc(const MeltState& start, bool physics) {
   return run;
 }
 
-// What bench_lj needs from a LAMMPS log.
-struct LammpsLog {
-  std::string policy;  // the neigh_modify arguments
-  double loop_seconds = -1.0;
-  double pair_seconds = -1.0, neigh_seconds = -1.0;  // of the loop, from its timing breakdown
-  int builds = -1;
-  std::vector<Thermo> thermo;
-};
-
-std::optional<LammpsLog> read_lammps_log(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  LammpsLog log;
-  std::vector<std::string> columns;  // of the thermo table being read, else empty
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string first;
-    words >> first;
-    if (first == "neigh_modify") {
-      std::getline(words >> std::ws, log.policy);
-    } else if (first == "Step") {
-      columns = {first};
-      for (std::string c; words >> c;) columns.push_back(c);
-    } else if (first == "Loop") {  // Loop time of X on 1 procs for 100 steps with 32000 atoms
-      std::sscanf(line.c_str(), "Loop time of %lf", &log.loop_seconds);
-      columns.clear();
-    } else if ((first == "Pair" || first == "Neigh") && line.find('|') != std::string::npos) {
-      // Section |  min time  |  avg time  |  max time  |%varavg| %total
-      double min_time = -1.0;
-      std::sscanf(line.c_str() + line.find('|') + 1, "%lf", &min_time);
-      (first == "Pair" ? log.pair_seconds : log.neigh_seconds) =
-          min_time;  // one process: min = avg
-    } else if (line.rfind("Neighbor list builds = ", 0) == 0) {
-      log.builds = std::atoi(line.c_str() + 23);
-    } else if (!columns.empty()) {
-      std::map<std::string, double> row;
-      std::istringstream values(line);
-      for (const std::string& c : columns) values >> row[c];
-      if (!values) continue;
-      log.thermo.push_back(
-          {static_cast<int>(row["Step"]), row["Temp"], row["E_pair"], row["TotEng"]});
-    }
-  }
-  if (log.loop_seconds < 0 || log.thermo.empty()) return std::nullopt;
-  return log;
-}
-
 // The logs of one rebuild policy.
 struct LammpsPolicy {
-  LammpsLog first;
+  bench::LammpsLog first;
   std::vector<double> loop_seconds;
 };
-
-const Thermo* at_step(const std::vector<Thermo>& thermo, int step) {
-  for (const Thermo& t : thermo)
-    if (t.step == step) return &t;
-  return nullptr;
-}
 
 std::string list(const std::vector<int>& steps) {
   std::string s;
@@ -191,14 +133,15 @@ std::string list(const std::vector<int>& steps) {
 int main(int argc, char** argv) {
   std::vector<LammpsPolicy> lammps;  // in the order of the arguments
   for (int a = 1; a < argc; ++a) {
-    const std::optional<LammpsLog> log = read_lammps_log(argv[a]);
+    const std::optional<bench::LammpsLog> log = bench::read_lammps_log(argv[a]);
     if (!log) {
       std::fprintf(stderr, "bench_lj: %s: not a LAMMPS log with a thermo table and a loop time\n",
                    argv[a]);
       return 2;
     }
-    auto same = std::find_if(lammps.begin(), lammps.end(),
-                             [&](const LammpsPolicy& p) { return p.first.policy == log->policy; });
+    auto same = std::find_if(lammps.begin(), lammps.end(), [&](const LammpsPolicy& p) {
+      return p.first.neigh_modify == log->neigh_modify;
+    });
     if (same == lammps.end()) same = lammps.insert(lammps.end(), {*log, {}});
     same->loop_seconds.push_back(log->loop_seconds);
   }
@@ -279,8 +222,10 @@ int main(int argc, char** argv) {
       },
       "%.2f");
   for (const int step : {0, 50, 100}) {
-    const Thermo* ours = at_step(physics.thermo, step);
-    const auto theirs = [step](const LammpsPolicy& p) { return at_step(p.first.thermo, step); };
+    const Thermo* ours = bench::at_step(physics.thermo, step);
+    const auto theirs = [step](const LammpsPolicy& p) {
+      return bench::at_step(p.first.thermo, step);
+    };
     char label[64];
     std::snprintf(label, sizeof label, "T at step %d", step);
     row(
@@ -288,14 +233,12 @@ int main(int argc, char** argv) {
         [&](const LammpsPolicy& p) { return theirs(p) ? theirs(p)->temperature : nan; }, "%.4f");
     std::snprintf(label, sizeof label, "E_tot / atom at step %d", step);
     row(
-        label, ours->total_per_atom,
-        [&](const LammpsPolicy& p) { return theirs(p) ? theirs(p)->total_per_atom : nan; }, "%.6f");
+        label, ours->total,
+        [&](const LammpsPolicy& p) { return theirs(p) ? theirs(p)->total : nan; }, "%.6f");
   }
   const auto drift = [](const std::vector<Thermo>& thermo) {
-    const Thermo *first = at_step(thermo, 0), *last = at_step(thermo, steps);
-    return first && last
-               ? (last->total_per_atom - first->total_per_atom) / std::abs(first->total_per_atom)
-               : std::nan("");
+    const Thermo *first = bench::at_step(thermo, 0), *last = bench::at_step(thermo, steps);
+    return first && last ? (last->total - first->total) / std::abs(first->total) : std::nan("");
   };
   row(
       "E_tot drift, steps 0-100 (relative)", drift(physics.thermo),
@@ -304,8 +247,8 @@ int main(int argc, char** argv) {
       "(a) partc: mean of steps 2-100 without a rebuild; LAMMPS: its Pair time / 100 steps\n"
       "(b) partc: mean of the steps with a rebuild - (a); LAMMPS: its Neigh time / builds\n");
   for (std::size_t k = 0; k < lammps.size(); ++k)
-    std::printf("LAMMPS %zu: neigh_modify %s (%zu runs)\n", k + 1, lammps[k].first.policy.c_str(),
-                lammps[k].loop_seconds.size());
+    std::printf("LAMMPS %zu: neigh_modify %s (%zu runs)\n", k + 1,
+                lammps[k].first.neigh_modify.c_str(), lammps[k].loop_seconds.size());
   if (lammps.empty()) std::printf("(no LAMMPS logs given: no LAMMPS columns)\n");
 
   std::printf("\npartc rebuilt its lists in steps %s; step 1 took %.2f ms\n",
@@ -316,7 +259,7 @@ int main(int argc, char** argv) {
       "energies per atom, LJ truncated at rc and not shifted (as LAMMPS's lj/cut)\n");
   std::printf("%6s %10s %12s %12s %12s\n", "step", "T", "E_pair", "E_tot", "E_tot-E_0");
   for (const Thermo& t : physics.thermo)
-    std::printf("%6d %10.5f %12.6f %12.6f %+12.3e\n", t.step, t.temperature, t.potential_per_atom,
-                t.total_per_atom, t.total_per_atom - physics.thermo.front().total_per_atom);
+    std::printf("%6d %10.5f %12.6f %12.6f %+12.3e\n", t.step, t.temperature, t.e_pair, t.total,
+                t.total - physics.thermo.front().total);
   return 0;
 }

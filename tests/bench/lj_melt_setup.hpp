@@ -2,7 +2,8 @@
 // in.melt at 32000 atoms, examples/lj_melt.part), built here rather than by
 // the model's init so that the benchmarks control it, and a hand-written
 // cell-list evaluation of forces and energies that checks the model's
-// physics independently of partc. Shared by bench_lj and bench_threads.
+// physics independently of partc. Shared by bench_lj, bench_threads and
+// bench_compose (which adds charges and Coulomb through for_each_pair_within).
 //
 //   MeltState state = melt_start();       // fcc lattice, T = 3, zero momentum, forces
 //   load_melt(model, state);              // into LjMelt through load()
@@ -47,14 +48,17 @@ struct MeltState {
   double temperature() const { return 2.0 * kinetic / (3.0 * static_cast<double>(size()) - 3.0); }
 };
 
-// Forces and the potential energy of the truncated (not shifted) LJ potential,
-// U = sum over pairs r < rc of 4 (r^-12 - r^-6), as LAMMPS's pair_style lj/cut,
-// with a cell list of cubic cells at least rc wide (13 a side here, so the
-// 27-cell stencil never visits a cell twice) and the minimum image per pair.
-// Written plainly: it runs twice per benchmark, not per step.
-inline void compute_forces(MeltState& s) {
+// Calls pair(i, j, d, r2) for every ordered pair i != j of the particles at
+// `position` closer than reach, so each pair from both sides, i in index
+// order: d = x_j - x_i by the minimum image in the periodic box of side
+// box_length(), r2 = |d|^2. With a cell list of cubic cells at least reach
+// wide (13 a side for 2.5, 11 for 3.0, so the 27-cell stencil never visits a
+// cell twice: reach must be at most a third of the box). Written plainly: it
+// checks partc's searches, and runs a few times per benchmark, not per step.
+template <class Pair>
+void for_each_pair_within(const std::vector<Vec3>& position, double reach, Pair&& pair) {
   const double L = box_length();
-  const int n = static_cast<int>(L / cutoff);
+  const int n = static_cast<int>(L / reach);
   const double width = L / n;
   const auto cell_of = [&](double x) {
     const int c = static_cast<int>(std::floor(x / width));
@@ -64,15 +68,13 @@ inline void compute_forces(MeltState& s) {
   const auto index = [n](int x, int y, int z) {
     return (static_cast<std::size_t>(((x + n) % n) * n + (y + n) % n)) * n + (z + n) % n;
   };
-  for (std::size_t i = 0; i < s.size(); ++i)
-    cells[index(cell_of(s.position[i][0]), cell_of(s.position[i][1]), cell_of(s.position[i][2]))]
+  for (std::size_t i = 0; i < position.size(); ++i)
+    cells[index(cell_of(position[i][0]), cell_of(position[i][1]), cell_of(position[i][2]))]
         .push_back(i);
 
-  s.force.assign(s.size(), Vec3{0, 0, 0});
-  double potential = 0.0;  // counts every pair twice
-  const double rc2 = cutoff * cutoff;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const Vec3& pi = s.position[i];
+  const double reach2 = reach * reach;
+  for (std::size_t i = 0; i < position.size(); ++i) {
+    const Vec3& pi = position[i];
     const int cx = cell_of(pi[0]), cy = cell_of(pi[1]), cz = cell_of(pi[2]);
     for (int ox = -1; ox <= 1; ++ox)
       for (int oy = -1; oy <= 1; ++oy)
@@ -81,17 +83,36 @@ inline void compute_forces(MeltState& s) {
             if (j == i) continue;
             Vec3 d;
             for (int k = 0; k < 3; ++k) {
-              d[k] = s.position[j][k] - pi[k];
+              d[k] = position[j][k] - pi[k];
               d[k] -= L * std::nearbyint(d[k] / L);  // the minimum image
             }
             const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if (r2 >= rc2) continue;
-            const double inv6 = 1.0 / (r2 * r2 * r2);
-            potential += 4.0 * inv6 * (inv6 - 1.0);
-            const double f_over_r = 24.0 * inv6 * (2.0 * inv6 - 1.0) / r2;
-            for (int k = 0; k < 3; ++k) s.force[i][k] -= f_over_r * d[k];
+            if (r2 < reach2) pair(i, j, d, r2);
           }
   }
+}
+
+// The LJ pair term at squared distance r2: 4 (r^-12 - r^-6), and the force on
+// i from j as f_over_r * (x_i - x_j).
+struct LjTerm {
+  double energy, f_over_r;
+};
+inline LjTerm lj_term(double r2) {
+  const double inv6 = 1.0 / (r2 * r2 * r2);
+  return {4.0 * inv6 * (inv6 - 1.0), 24.0 * inv6 * (2.0 * inv6 - 1.0) / r2};
+}
+
+// Forces and the potential energy of the truncated (not shifted) LJ potential,
+// U = sum over pairs r < rc of 4 (r^-12 - r^-6), as LAMMPS's pair_style lj/cut.
+inline void compute_forces(MeltState& s) {
+  s.force.assign(s.size(), Vec3{0, 0, 0});
+  double potential = 0.0;  // counts every pair twice
+  const auto add = [&](std::size_t i, std::size_t, const Vec3& d, double r2) {
+    const LjTerm lj = lj_term(r2);
+    potential += lj.energy;
+    for (int k = 0; k < 3; ++k) s.force[i][k] -= lj.f_over_r * d[k];
+  };
+  for_each_pair_within(s.position, cutoff, add);
   s.potential = 0.5 * potential;
 }
 
