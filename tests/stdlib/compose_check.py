@@ -19,7 +19,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-PAIR_FORCES = {"soft_exp", "lj", "wca", "coulomb"}
+PAIR_FORCES = {"soft_exp", "lj", "wca", "coulomb", "spring_dashpot"}
 
 
 def forces(program, folder):
