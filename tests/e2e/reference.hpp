@@ -46,4 +46,13 @@ auto values_by_id(const Set& set) {
   return out;
 }
 
+// The largest distance between a generated vec variable and its reference.
+template <class V>
+double worst(const std::vector<V>& got, const std::vector<Vec2>& want) {
+  double w = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    w = std::max(w, norm({got[i][0] - want[i][0], got[i][1] - want[i][1]}));
+  return w;
+}
+
 }  // namespace reference

@@ -45,13 +45,6 @@ Sums reference_sums(const std::vector<Vec2>& p, const std::vector<double>& m, do
   return sums;
 }
 
-double worst(const std::vector<partc::Vec<2>>& got, const std::vector<Vec2>& want) {
-  double w = 0;
-  for (std::size_t i = 0; i < got.size(); ++i)
-    w = std::max(w, reference::norm({got[i][0] - want[i][0], got[i][1] - want[i][1]}));
-  return w;
-}
-
 double relative_error(const std::vector<double>& got, const std::vector<double>& want) {
   double w = 0;
   for (std::size_t k = 0; k < got.size(); ++k) w = std::max(w, std::abs(got[k] - want[k]) / want[k]);
@@ -82,16 +75,16 @@ TEST_CASE("auto, brute force, cell list, k-d tree and Verlet lists agree with br
     for (const Vec2& f : want) scale = std::max(scale, reference::norm(f));
     REQUIRE(scale > 0);
     INFO("N = " << n << ", step " << step);
-    CHECK(worst(reference::values_by_id<Model::P_f_auto>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_f_brute>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_f_cells>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_f_tree>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_f_lists>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_f_pairs>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_g_auto>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_g_brute>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_g_cells>(model.P()), want) <= 1e-12 * scale);
-    CHECK(worst(reference::values_by_id<Model::P_g_tree>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_auto>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_brute>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_cells>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_tree>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_lists>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_f_pairs>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_g_auto>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_g_brute>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_g_cells>(model.P()), want) <= 1e-12 * scale);
+    CHECK(reference::worst(reference::values_by_id<Model::P_g_tree>(model.P()), want) <= 1e-12 * scale);
     CHECK(reference::values_by_id<Model::P_close>(model.P()) == sums.close);
     CHECK(reference::values_by_id<Model::P_close_auto>(model.P()) == sums.close);
     CHECK(relative_error(reference::values_by_id<Model::P_weight>(model.P()), sums.weight) <= 1e-12);

@@ -42,14 +42,7 @@ Sums brute_force(const std::vector<Vec2>& p, double r) {
   return sums;
 }
 
-double worst(const std::vector<partc::Vec<2>>& got, const std::vector<Vec2>& want) {
-  double w = 0;
-  for (std::size_t i = 0; i < got.size(); ++i)
-    w = std::max(w, reference::norm({got[i][0] - want[i][0], got[i][1] - want[i][1]}));
-  return w;
-}
-
-double worst(const std::vector<double>& got, const std::vector<double>& want) {
+double largest_difference(const std::vector<double>& got, const std::vector<double>& want) {
   double w = 0;
   for (std::size_t i = 0; i < got.size(); ++i) w = std::max(w, std::abs(got[i] - want[i]));
   return w;
@@ -78,12 +71,14 @@ TEST_CASE("two cutoffs over one set: one build per step, results as brute force"
     INFO("step " << step);
     const Sums at_rc = brute_force(a, rc), at_rf = brute_force(a, rf),
                at_half = brute_force(a, 0.5 * rc);
-    CHECK(worst(reference::values_by_id<Model::A_rho>(model.A()), at_rc.weight) <= 1e-12);
-    CHECK(worst(reference::values_by_id<Model::A_f>(model.A()), at_rf.force) <= 1e-12);
-    CHECK(reference::values_by_id<Model::A_near>(model.A()) == at_half.count);
-    CHECK(worst(reference::values_by_id<Model::L_g>(model.L()), brute_force(l, rc).force) <= 1e-12);
-    CHECK(worst(reference::values_by_id<Model::L_w>(model.L()), brute_force(l, 1.5 * rc).weight) <=
+    CHECK(largest_difference(reference::values_by_id<Model::A_rho>(model.A()), at_rc.weight) <=
           1e-12);
+    CHECK(reference::worst(reference::values_by_id<Model::A_f>(model.A()), at_rf.force) <= 1e-12);
+    CHECK(reference::values_by_id<Model::A_near>(model.A()) == at_half.count);
+    CHECK(reference::worst(reference::values_by_id<Model::L_g>(model.L()),
+                           brute_force(l, rc).force) <= 1e-12);
+    CHECK(largest_difference(reference::values_by_id<Model::L_w>(model.L()),
+                             brute_force(l, 1.5 * rc).weight) <= 1e-12);
     // Once per position change: the positions move once per step.
     CHECK(builds(model, "sums over A at lines 36, 37") == static_cast<std::size_t>(step));
     CHECK(builds(model, "sums over A at line 38") == static_cast<std::size_t>(step));
