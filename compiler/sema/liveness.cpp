@@ -108,10 +108,8 @@ void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& repor
       const std::string& target = st.target.var.name;
       if (candidates.count(target) && !live.count(target)) continue;
       kept.insert(at);
-      std::set<std::string> reads;
-      Reads{reads}.chain(st.value);
-      for (const std::string& name : reads) changed |= live.insert(name).second;
-      changed = true;
+      Reads{live}.chain(st.value);
+      changed = true;  // a statement kept: its reads may keep others
     }
     for (const auto& [set, vars] : made.owned)
       for (const ast::VarDecl& v : vars)
