@@ -164,6 +164,7 @@ struct solve_statement_id : locate {};
 struct iterate_block_id : locate {};
 struct block_statement_id : locate {};
 struct step_number_id : locate {};
+struct dim_number_id : locate {};
 struct var_decl_id : locate {};
 struct fn_decl_id : locate {};
 struct schedule_block_id : locate {};
@@ -186,6 +187,7 @@ struct at_item_id : locate {};
 struct use_decl_id : locate {};
 struct use_argument_id : locate {};
 struct order_decl_id : locate {};
+struct import_decl_id : locate {};
 struct end_of_effect_id : locate {};
 struct program_id : locate {};
 struct end_of_block_id : locate {};
@@ -245,6 +247,8 @@ x3::rule<block_statement_id, ast::BlockStatement> const block_statement = "a sta
 x3::rule<iterate_block_id, ast::IterateBlock> const iterate_block = "an iterate block";
 x3::rule<step_number_id, ast::Identifier> const step_number = "step";
 x3::rule<class step_number_text_id, ast::Identifier> const step_number_text = "step";
+x3::rule<dim_number_id, ast::Identifier> const dim_number = "dim";
+x3::rule<class dim_number_text_id, ast::Identifier> const dim_number_text = "dim";
 x3::rule<var_decl_id, ast::VarDecl> const var_decl = "a variable declaration";
 x3::rule<fn_decl_id, ast::FnDecl> const fn_decl = "a function declaration";
 x3::rule<schedule_block_id, ast::ScheduleBlock> const schedule_block = "a schedule block";
@@ -283,12 +287,15 @@ x3::rule<use_decl_id, ast::UseDecl> const use_decl = "a use declaration";
 x3::rule<use_argument_id, ast::UseArgument> const use_argument = "an argument like eps = 1.2";
 x3::rule<order_decl_id, ast::OrderDecl> const order_decl = "an order declaration";
 x3::rule<class order_decl_text_id, ast::OrderDecl> const order_decl_text = "an order declaration";
+x3::rule<import_decl_id, ast::ImportDecl> const import_decl = "an import declaration";
+x3::rule<class import_decl_text_id, ast::ImportDecl> const import_decl_text =
+    "an import declaration";
 x3::rule<program_id, std::vector<ast::Declaration>> const program = "a program";
 x3::rule<end_of_block_id> const end_of_block = "an assignment like x[i] = ... or '}'";
 x3::rule<end_of_vars_id> const end_of_vars = "a variable declaration like v: vec = 0, or '}'";
 x3::rule<end_of_input_id> const end_of_input =
     "a declaration (model, dim, domain, param, const, observable, timestep, output, fn, "
-    "particles, init, step, stage, schedule, use, order, module or effect)";
+    "particles, init, step, stage, schedule, use, order, import, module or effect)";
 
 // Semantic actions fill single-member nodes. X3 calls no on_success for a
 // rule whose definition holds an action, so each such rule (`*_text`) is
@@ -394,13 +401,19 @@ auto const negation_def = (x3::string("-") | x3::string("+")) > unary;
 auto const postfix_def = primary >> *('.' > identifier);
 
 // primary = real_literal | int_literal | bool_literal | norm | call
-//         | indexed | identifier | step_number | "(" , expression , ")" ;
+//         | indexed | identifier | step_number | dim_number | "(" , expression , ")" ;
 auto const primary_def = real_literal | int_literal | bool_literal | norm | call | indexed |
-                         identifier | step_number | ('(' > expression > ')');
+                         identifier | step_number | dim_number | ('(' > expression > ')');
 
 // step_number = "step" ;  (the keyword, read as the number of steps taken)
 auto const step_number_def = step_number_text;
 auto const step_number_text_def = keyword("step")[set_step_name];
+
+// dim_number = "dim" ;  (the keyword, read as the model's dimension: for
+// modules written for any dimension, as a kernel's normalisation)
+auto const set_dim_name = [](auto& ctx) { _val(ctx).name = "dim"; };
+auto const dim_number_def = dim_number_text;
+auto const dim_number_text_def = keyword("dim")[set_dim_name];
 
 // norm = "|" , expression , "|" ;
 auto const norm_def = norm_text;
@@ -450,9 +463,11 @@ auto const dim_decl_text_def = (keyword("dim") > int_literal)[set_dim_value];
 
 // domain_decl = "domain" , "lo" , "=" , tuple , "hi" , "=" , tuple , { boundary_clause } ;
 auto const domain_decl_def = keyword("domain") > keyword("lo") > '=' > tuple > keyword("hi") >
-                             '=' > tuple > *boundary_clause;
+                             '=' > tuple > *(&(identifier >> '=') >> boundary_clause);
 
 // boundary_clause = identifier , "=" , "(" , [ identifier , { "," , identifier } ] , ")" ;
+// (a clause is a name and '=': a word without one begins the next
+// declaration, as `use` or `import` may)
 auto const boundary_clause_def = identifier > '=' > '(' > -(identifier % ',') > ')';
 
 // tuple = "(" , expression , { "," , expression } , ")" ;
@@ -570,14 +585,19 @@ auto const set_instances = [](auto& ctx) { _val(ctx).instances = std::move(_attr
 auto const order_decl_def = order_decl_text;
 auto const order_decl_text_def = (keyword("order") > (identifier % ','))[set_instances];
 
+// import_decl = "import" , dotted_name ;
+auto const set_import_module = [](auto& ctx) { _val(ctx).module = std::move(_attr(ctx)); };
+auto const import_decl_def = import_decl_text;
+auto const import_decl_text_def = (keyword("import") > dotted_name)[set_import_module];
+
 // declaration = model_decl | dim_decl | domain_decl | param_decl | const_decl
 //             | observable_decl | timestep_decl | output_decl
 //             | fn_decl | particles_decl | stage_block | schedule_block
-//             | module_decl | effect_decl | use_decl | order_decl ;
+//             | module_decl | effect_decl | use_decl | order_decl | import_decl ;
 auto const declaration_def = model_decl | dim_decl | domain_decl | param_decl | const_decl |
                              observable_decl | timestep_decl | output_decl | fn_decl |
                              particles_decl | stage_block | schedule_block | module_decl |
-                             effect_decl | use_decl | order_decl;
+                             effect_decl | use_decl | order_decl | import_decl;
 
 // program = { declaration } ;
 auto const program_def = *declaration > end_of_input;
@@ -600,7 +620,7 @@ BOOST_SPIRIT_DEFINE(identifier, identifier_text, int_literal, int_literal_text, 
 BOOST_SPIRIT_DEFINE(boundary_clause, schedule_subject, module_decl, module_decl_text, dotted_name,
                     effect_decl, end_of_effect, effect_param, effect_item, owns_item, access_item,
                     provides_item, slots_item, at_item, use_decl, use_argument, order_decl,
-                    order_decl_text)
+                    order_decl_text, import_decl, import_decl_text, dim_number, dim_number_text)
 
 // Whitespace and comments from '#' to the end of the line.
 auto const skipper = x3::space | lexeme['#' >> *(char_ - x3::eol)];

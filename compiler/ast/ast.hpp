@@ -307,11 +307,15 @@ struct UseDecl : Located {
 struct OrderDecl : Located {
   std::vector<Identifier> instances;
 };
+// import sph.kernels: a module's functions and constants, by their own names.
+struct ImportDecl : Located {
+  std::vector<Identifier> module;
+};
 
 struct Declaration
     : x3::variant<ModelDecl, DimDecl, DomainDecl, ParamDecl, ConstDecl, ObservableDecl,
                   TimestepDecl, OutputDecl, FnDecl, ParticlesDecl, StageBlock, ScheduleBlock,
-                  ModuleDecl, EffectDecl, UseDecl, OrderDecl> {
+                  ModuleDecl, EffectDecl, UseDecl, OrderDecl, ImportDecl> {
   using base_type::base_type;
   using base_type::operator=;
 };

@@ -186,6 +186,9 @@ struct Printer {
   std::string operator()(const OrderDecl& n) const {
     return "(order " + names(n.instances, " ") + ") " + at(n);
   }
+  std::string operator()(const ImportDecl& n) const {
+    return "(import " + dotted(n.module) + ") " + at(n);
+  }
 };
 
 }  // namespace

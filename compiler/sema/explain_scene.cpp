@@ -7,7 +7,7 @@ namespace partc {
 
 std::string explain_scene(const SceneReport& report, const SourceFile& file) {
   if (!report.is_scene()) return {};
-  std::string out = "effects kept:\n";
+  std::string out = report.kept.empty() && report.dropped.empty() ? "" : "effects kept:\n";
   for (const SceneReport::Instance& inst : report.kept) {
     std::string sets;
     for (const std::string& s : inst.sets) sets += (sets.empty() ? "" : ", ") + s;
@@ -17,7 +17,7 @@ std::string explain_scene(const SceneReport& report, const SourceFile& file) {
   for (const std::string& name : report.dropped) out += "  dropped: " + name + " (--drop)\n";
   out += "modules opened (no other module of the library was read):\n";
   for (const std::string& path : report.modules_opened) out += "  " + path + "\n";
-  out += "statements placed at slots:\n";
+  if (!report.placements.empty()) out += "statements placed at slots:\n";
   for (const std::string& line : report.placements) out += "  " + line + "\n";
   if (!report.variables.empty() || !report.dropped_statements.empty()) {
     out += "liveness (from the scene's statements, outputs and schedule):\n";

@@ -279,6 +279,7 @@ Expr Sema::check(const ast::Operand& operand, Scope& scope) {
 
 Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
   if (n.name == "pi") return std::make_shared<ir::Literal>(Type::Real, M_PI, n.loc);
+  if (n.name == "dim") return std::make_shared<ir::Literal>(Type::Int, model_.dim, n.loc);
   if (n.name == "lo" || n.name == "hi") {
     // The domain's corners, for walls: p[i].y - lo.y is the distance to the floor.
     const std::vector<double>& corner = n.name == "lo" ? model_.domain.lo : model_.domain.hi;

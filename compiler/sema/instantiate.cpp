@@ -139,6 +139,9 @@ class Instantiation {
  private:
   void find_instances();
   void collect_scene_names();
+  std::string qualified(const std::string& name, Location at);
+  const Renamer& declare_module(const scene::Module& module);
+  void import_into_scene();
   void declare_instances();
   void place_statements();
   std::vector<ast::BlockStatement> slot_statements(const std::string& set, const std::string& slot,
@@ -161,6 +164,8 @@ class Instantiation {
   std::vector<Diagnostic> problems_;
   std::vector<Instance> instances_;
   std::map<const Instance*, Renamer> renamers_;
+  std::map<const scene::Module*, Renamer> module_scopes_;  // declared modules' own names
+  std::map<std::string, std::string> mangled_;             // C++ name -> qualified name
   std::set<std::string> scene_names_;
   std::vector<std::string> set_names_;
   std::vector<std::string> order_;
@@ -252,50 +257,135 @@ void Instantiation::collect_scene_names() {
   }
 }
 
-void Instantiation::declare_instances() {
-  std::set<std::string> modules_declared;
-  std::map<std::string, std::string> mangled;  // C++ name -> qualified name
-  auto qualified = [&](const std::string& name, Location at) {
-    const std::string cpp = scene::mangled(name);
-    auto [it, fresh] = mangled.insert({cpp, name});
-    if (scene_names_.count(cpp) || (!fresh && it->second != name))
-      error(at,
-            name + " would be named " + cpp + " in C++, as " +
-                (scene_names_.count(cpp) ? "the scene's " + cpp : it->second) + " is",
-            "rename the scene's declaration or the instance (use ... as NAME)");
-    return name;
-  };
-  for (const Instance& inst : instances_) {
-    const scene::Module& module = *inst.module;
-    // The module's own names: functions and constants, visible to its effect.
-    Renamer module_names;
-    module_names.scene_names = &scene_names_;
-    module_names.problems = &problems_;
-    for (const ast::Declaration& decl : module.program.declarations) {
-      if (auto f = boost::get<ast::FnDecl>(&decl))
-        module_names.names[f->name.name] = qualified(module.name + "." + f->name.name, f->name.loc);
-      if (auto c = boost::get<ast::ConstDecl>(&decl))
-        module_names.names[c->name.name] = qualified(module.name + "." + c->name.name, c->name.loc);
-    }
-    if (modules_declared.insert(module.name).second)
-      for (const ast::Declaration& decl : module.program.declarations) {
-        if (auto f = boost::get<ast::FnDecl>(&decl)) {
-          ast::FnDecl copy = *f;
-          Renamer body = module_names;
-          for (const ast::FnParam& a : f->params) body.names.erase(a.name.name);
-          copy.name.name = module_names.names[f->name.name];
-          body.chain(copy.value);
-          made_.declared.emplace_back(copy);
-        }
-        if (auto c = boost::get<ast::ConstDecl>(&decl)) {
-          ast::ConstDecl copy = *c;
-          copy.name.name = module_names.names[c->name.name];
-          module_names.chain(copy.value);
-          made_.declared.emplace_back(copy);
-        }
-      }
+std::string Instantiation::qualified(const std::string& name, Location at) {
+  const std::string cpp = scene::mangled(name);
+  auto [it, fresh] = mangled_.insert({cpp, name});
+  if (scene_names_.count(cpp) || (!fresh && it->second != name))
+    error(at,
+          name + " would be named " + cpp + " in C++, as " +
+              (scene_names_.count(cpp) ? "the scene's " + cpp : it->second) + " is",
+          "rename the scene's declaration or the instance (use ... as NAME)");
+  return name;
+}
 
-    Renamer r = module_names;
+// The names a module's text sees: its own functions and constants and those
+// of the modules it imports, each named MODULE.NAME. Declares the module's
+// functions and constants once, after those of its imports.
+const Renamer& Instantiation::declare_module(const scene::Module& module) {
+  if (auto it = module_scopes_.find(&module); it != module_scopes_.end()) return it->second;
+  Renamer scope;
+  scope.scene_names = &scene_names_;
+  scope.problems = &problems_;
+  std::map<std::string, std::string> from;  // imported name -> the module it came from
+  for (const scene::Module* imported : module.imports) {
+    const Renamer& theirs = declare_module(*imported);
+    for (const ast::Declaration& decl : imported->program.declarations) {
+      const ast::Identifier* name = nullptr;
+      if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
+      if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
+      if (!name) continue;
+      auto [it, fresh] = from.insert({name->name, imported->name});
+      if (!fresh && it->second != imported->name)
+        error(name->loc, module.name + " imports " + name->name + " from both " + it->second +
+                             " and " + imported->name,
+              "import one of them, or rename one");
+      scope.names[name->name] = theirs.names.at(name->name);
+    }
+  }
+  for (const ast::Declaration& decl : module.program.declarations) {
+    const ast::Identifier* name = nullptr;
+    if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
+    if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
+    if (!name) continue;
+    if (auto it = from.find(name->name); it != from.end())
+      error(name->loc, module.name + " declares " + name->name + ", which it imports from " +
+                           it->second,
+            "rename one of them");
+    scope.names[name->name] = qualified(module.name + "." + name->name, name->loc);
+  }
+  for (const ast::Declaration& decl : module.program.declarations) {
+    if (auto f = boost::get<ast::FnDecl>(&decl)) {
+      ast::FnDecl copy = *f;
+      Renamer body = scope;
+      for (const ast::FnParam& a : f->params) body.names.erase(a.name.name);
+      copy.name.name = scope.names[f->name.name];
+      body.chain(copy.value);
+      made_.declared.emplace_back(copy);
+    }
+    if (auto c = boost::get<ast::ConstDecl>(&decl)) {
+      ast::ConstDecl copy = *c;
+      copy.name.name = scope.names[c->name.name];
+      scope.chain(copy.value);
+      made_.declared.emplace_back(copy);
+    }
+  }
+  return module_scopes_[&module] = scope;
+}
+
+// `import M` in a scene: M's functions and constants under their own names,
+// each a one-line alias of the module's (inlined like any call).
+void Instantiation::import_into_scene() {
+  std::map<std::string, std::string> from;
+  for (const ast::Declaration& decl : scene_.declarations) {
+    auto import = boost::get<ast::ImportDecl>(&decl);
+    if (!import) continue;
+    const scene::Module& module = library_.open(*import);
+    const Renamer& scope = declare_module(module);
+    for (const ast::Declaration& d : module.program.declarations) {
+      const ast::Identifier* name = nullptr;
+      if (auto f = boost::get<ast::FnDecl>(&d)) name = &f->name;
+      if (auto c = boost::get<ast::ConstDecl>(&d)) name = &c->name;
+      if (!name) continue;
+      if (scene_names_.count(name->name) && !from.count(name->name)) {
+        error(import->loc,
+              "import " + module.name + " brings " + name->name + ", which the scene declares",
+              "rename the scene's " + name->name + " (" + module.name + "'s is at " +
+                  file_.line_reference(name->loc.begin) + ")");
+        continue;
+      }
+      if (auto [it, fresh] = from.insert({name->name, module.name}); !fresh) {
+        error(import->loc,
+              "import " + module.name + " brings " + name->name + ", which " + it->second +
+                  " brought too",
+              "import one of them");
+        continue;
+      }
+      scene_names_.insert(name->name);
+      const ast::Identifier original = named(scope.names.at(name->name), name->loc);
+      if (auto c = boost::get<ast::ConstDecl>(&d)) {
+        ast::ConstDecl alias;
+        alias.loc = c->loc;
+        alias.name = c->name;
+        alias.value.loc = c->loc;
+        alias.value.first = original;
+        made_.declared.emplace_back(alias);
+        continue;
+      }
+      const auto& f = boost::get<ast::FnDecl>(d);
+      ast::FnDecl alias;
+      alias.loc = f.loc;
+      alias.name = f.name;
+      alias.params = f.params;
+      ast::Call call;
+      call.loc = f.loc;
+      call.callee = original;
+      for (const ast::FnParam& a : f.params) {
+        ast::Chain arg;
+        arg.loc = a.loc;
+        arg.first = a.name;
+        call.args.emplace_back(arg);
+      }
+      alias.value.loc = f.loc;
+      alias.value.first = ast::x3::forward_ast<ast::Call>(call);
+      made_.declared.emplace_back(alias);
+    }
+  }
+  flush();
+}
+
+void Instantiation::declare_instances() {
+  for (const Instance& inst : instances_) {
+    Renamer r = declare_module(*inst.module);
     r.sets = inst.sets;
     r.vars = inst.locals;
     r.instance = inst.name;
@@ -555,6 +645,7 @@ ast::ScheduleBlock Instantiation::schedule(const ast::ScheduleBlock& block) cons
 ast::Program Instantiation::run() {
   find_instances();
   collect_scene_names();
+  import_into_scene();
   owners_ = scene::check_interfaces(instances_, scene_, file_);
   declare_instances();
   place_statements();
@@ -579,7 +670,7 @@ ast::Program Instantiation::run() {
   };
   for (std::size_t k = 0; k < scene_.declarations.size(); ++k) {
     const ast::Declaration& decl = scene_.declarations[k];
-    if (boost::get<ast::UseDecl>(&decl)) {
+    if (boost::get<ast::UseDecl>(&decl) || boost::get<ast::ImportDecl>(&decl)) {
       emit_declared();
       continue;
     }
@@ -621,7 +712,8 @@ ast::Program instantiate_scene(const ast::Program& scene, SourceFile& file,
     if (auto e = boost::get<ast::EffectDecl>(&decl))
       throw CompileError(Diagnostic{e->loc, "an effect is declared in a module of its own",
                                     "move it to a file NAME.part that begins: module NAME"});
-    uses = uses || boost::get<ast::UseDecl>(&decl) || boost::get<ast::OrderDecl>(&decl);
+    uses = uses || boost::get<ast::UseDecl>(&decl) || boost::get<ast::OrderDecl>(&decl) ||
+           boost::get<ast::ImportDecl>(&decl);
   }
   if (!uses) {
     for (const std::string& name : options.drop)

@@ -4,7 +4,8 @@
 // Runs on the instantiated declarations, before names are resolved: what is
 // dropped here never reaches sema, so no variable is stored, no statement
 // computed, no search built and no function emitted for it. The roots are
-// explicit: everything the scene itself declares or writes, positions, `output`
+// explicit: everything the scene itself declares or writes (its functions'
+// calls too), positions, `output`
 // lines and schedule entries. From them, a statement an effect placed is kept
 // when its target is kept, and a target is kept when a kept statement (or a
 // kept variable's initial value) reads it; functions of a module are kept
@@ -80,6 +81,7 @@ void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& repor
         if (item.subject && item.subject->member) roots.insert(item.subject->member->name);
     if (auto set = boost::get<ast::ParticlesDecl>(&decl)) Reads{live}.chain(set->count);
     if (auto c = boost::get<ast::ConstDecl>(&decl)) Reads{live}.chain(c->value);
+    if (auto f = boost::get<ast::FnDecl>(&decl)) Reads{live}.chain(f->value);
     if (auto o = boost::get<ast::ObservableDecl>(&decl)) Reads{live}.chain(o->value);
     if (auto t = boost::get<ast::TimestepDecl>(&decl)) Reads{live}.chain(t->value);
   }

@@ -3,7 +3,9 @@
 // `use pair.lj` reads FOLDER/pair/lj.part from the first root that has it
 // (the scene's own folder, then the standard library). The module's text is
 // appended to the compilation's source, so every later message and comment
-// can point into it.
+// can point into it. `import sph.kernels` opens a module for its functions
+// and constants alone (a module may hold no effect); imports are opened as
+// they are met, so a cycle is found while its chain is open.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -48,6 +50,7 @@ const char* declaration_kind(const ast::Declaration& decl) {
       return "a use (modules do not use other modules yet)";
     }
     const char* operator()(const ast::OrderDecl&) const { return "an order declaration"; }
+    const char* operator()(const ast::ImportDecl&) const { return nullptr; }
   };
   return boost::apply_visitor(Kind{}, decl);
 }
@@ -63,16 +66,41 @@ std::string read_text(const std::filesystem::path& path) {
   return buffer.str();
 }
 
+Location span(const std::vector<ast::Identifier>& name) {
+  return {name.front().loc.begin, name.back().loc.end};
+}
+
 }  // namespace
 
 const Module& ModuleLibrary::open(const ast::UseDecl& use) {
-  const std::string name = ast::dotted(use.module);
+  const Module& module = open(use.module);
+  if (!module.effect)
+    throw CompileError(Diagnostic{span(use.module),
+                                  "module " + module.name + " holds functions, not an effect",
+                                  "import it for its functions: import " + module.name});
+  return module;
+}
+
+const Module& ModuleLibrary::open(const ast::ImportDecl& import) {
+  const std::string name = ast::dotted(import.module);
+  if (std::count(opening_.begin(), opening_.end(), name)) {
+    std::string chain;
+    for (auto it = std::find(opening_.begin(), opening_.end(), name); it != opening_.end(); ++it)
+      chain += *it + " imports ";
+    throw CompileError(Diagnostic{span(import.module), "modules import each other: " + chain + name,
+                                  "move what both need to a module of its own"});
+  }
+  return open(import.module);
+}
+
+const Module& ModuleLibrary::open(const std::vector<ast::Identifier>& dotted) {
+  const std::string name = ast::dotted(dotted);
   if (auto it = modules_.find(name); it != modules_.end()) return *it->second;
 
   std::filesystem::path relative;
-  for (const ast::Identifier& part : use.module) relative /= part.name;
+  for (const ast::Identifier& part : dotted) relative /= part.name;
   relative += ".part";
-  const Location at{use.module.front().loc.begin, use.module.back().loc.end};
+  const Location at = span(dotted);
   std::string looked;
   for (const ModuleRoot& root : roots_) {
     const std::filesystem::path path = std::filesystem::path(root.folder) / relative;
@@ -105,7 +133,7 @@ const Module& ModuleLibrary::open(const ast::UseDecl& use) {
     for (std::size_t k = header ? 1 : 0; k < decls.size(); ++k) {
       if (const char* what = declaration_kind(decls[k]))
         problems.push_back({location(decls[k]), std::string("a module cannot hold ") + what,
-                            "a module holds fn and const declarations and one effect"});
+                            "a module holds imports, fn and const declarations and one effect"});
       if (auto effect = boost::get<ast::EffectDecl>(&decls[k])) {
         if (module->effect)
           problems.push_back({effect->loc, "a second effect in module " + name,
@@ -114,10 +142,11 @@ const Module& ModuleLibrary::open(const ast::UseDecl& use) {
           module->effect = effect;
       }
     }
-    if (!module->effect && problems.empty())
-      problems.push_back({start, "module " + name + " has no effect",
-                          "declare one: effect NAME(PARAMS) on P { ... }"});
     if (!problems.empty()) throw CompileError(problems);
+    opening_.push_back(name);
+    for (const ast::Declaration& decl : decls)
+      if (auto import = boost::get<ast::ImportDecl>(&decl)) module->imports.push_back(&open(*import));
+    opening_.pop_back();
     return *(modules_[name] = std::move(module));
   }
   // On the error path only: the modules there are, for a suggestion.

@@ -54,7 +54,7 @@ struct SceneReport {
     std::string why;
   };
   std::vector<Decision> variables;
-  bool is_scene() const { return !kept.empty() || !dropped.empty(); }
+  bool is_scene() const { return !kept.empty() || !dropped.empty() || !modules_opened.empty(); }
 };
 
 // The model with every `use` instantiated. A model with no `use` comes back

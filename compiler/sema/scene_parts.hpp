@@ -13,12 +13,14 @@
 
 namespace partc::scene {
 
-// A parsed module: `module NAME`, functions and constants, and one effect.
+// A parsed module: `module NAME`, the modules it imports, functions and
+// constants, and at most one effect (none: a module of functions, imported).
 struct Module {
   std::string name;
   std::string path;  // as messages name it
   ast::Program program;
   const ast::EffectDecl* effect = nullptr;
+  std::vector<const Module*> imports;
 };
 
 // Opens modules on first use, each once; a module never used is never read.
@@ -26,13 +28,16 @@ class ModuleLibrary {
  public:
   ModuleLibrary(SourceFile& file, const std::vector<ModuleRoot>& roots, SceneReport& report)
       : file_(file), roots_(roots), report_(report) {}
-  const Module& open(const ast::UseDecl& use);
+  const Module& open(const ast::UseDecl& use);          // a module with an effect
+  const Module& open(const ast::ImportDecl& import);    // any module, for its functions
 
  private:
+  const Module& open(const std::vector<ast::Identifier>& name);
   SourceFile& file_;
   const std::vector<ModuleRoot>& roots_;
   SceneReport& report_;
   std::map<std::string, std::unique_ptr<Module>> modules_;
+  std::vector<std::string> opening_;  // the chain of imports being opened, for cycles
 };
 
 // One `use`: an effect instantiated on actual sets.
