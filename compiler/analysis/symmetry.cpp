@@ -12,7 +12,9 @@
 // through one label is neither on its own, but a commutative operation on it
 // and its twin read through the other label is even -- r[i] + r[j],
 // m[i] * m[j], max(h[i], h[j]) -- and a difference of twins, v[j] - v[i], is
-// odd. A user function's call is judged by its body with the arguments put
+// odd. Products are judged whole: k * q[i] * q[j] / r is even although
+// (k * q[i]) * q[j] groups q[i] apart from its twin, because factors pair up
+// with their twins across the product's grouping. A user function's call is judged by its body with the arguments put
 // in (ir/inline_calls.hpp): amix(a[i], a[j]) with fn amix(x, y) = sqrt(x * y)
 // is even, because x * y becomes a[i] * a[j]; past the inlining budget, a
 // call is even when its arguments are. The rules are sound, not complete:
@@ -116,7 +118,39 @@ class PairExchange {
     return p;
   }
 
+  // The factors of a product: a * b / c gives a and b over c.
+  static void factors(const Expr& e, bool over, std::vector<Expr>& up, std::vector<Expr>& down) {
+    if (e->kind == ir::ExprKind::Binary) {
+      auto b = ir::as<ir::Binary>(e);
+      if (b->op == ir::BinaryOp::Mul || b->op == ir::BinaryOp::Div) {
+        factors(b->lhs, over, up, down);
+        factors(b->rhs, b->op == ir::BinaryOp::Div ? !over : over, up, down);
+        return;
+      }
+    }
+    (over ? down : up).push_back(e);
+  }
+
+  // A product's parity: each factor with its twin beside it (on the same side
+  // of the fraction) is even as a pair; the other factors by their own.
+  Parity product(const Expr& self) {
+    std::vector<Expr> up, down;
+    factors(self, false, up, down);
+    Parity p = Parity::Even;
+    for (std::vector<Expr>* side : {&up, &down}) {
+      std::vector<bool> paired(side->size(), false);
+      for (std::size_t a = 0; a < side->size(); ++a) {
+        if (paired[a]) continue;
+        for (std::size_t b = a + 1; b < side->size() && !paired[a]; ++b)
+          if (!paired[b] && twins((*side)[a], (*side)[b])) paired[a] = paired[b] = true;
+        if (!paired[a]) p = times(p, parity((*side)[a]));
+      }
+    }
+    return found(self, p);
+  }
+
   Parity binary(const ir::Binary& b, const Expr& self) {
+    if (b.op == ir::BinaryOp::Mul || b.op == ir::BinaryOp::Div) return product(self);
     // T turns `a op b` into `b op a` when b is a's twin.
     if (twins(b.lhs, b.rhs)) {
       if (is_commutative(b.op)) return Parity::Even;
@@ -126,8 +160,6 @@ class PairExchange {
     switch (b.op) {
       case ir::BinaryOp::Add:
       case ir::BinaryOp::Sub: return found(self, alike(l, r));
-      case ir::BinaryOp::Mul:
-      case ir::BinaryOp::Div: return found(self, times(l, r));
       // -a == -b exactly when a == b.
       case ir::BinaryOp::Eq:
       case ir::BinaryOp::Ne:

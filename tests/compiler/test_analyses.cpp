@@ -138,6 +138,11 @@ TEST_CASE("symmetry: even terms under an even condition take each pair once", "[
   CHECK(newton_sign("f[i] = sum(j, |dx| < smix(r[i], r[j]), amix(m[i], m[j]) * dx)") == -1);
   CHECK(newton_sign("f[i] = sum(j, |dx| < rc, gap(h[j], h[i]) * dx)") == 1);  // odd * odd
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, twice(m[i] * m[j]))") == 1);   // calls in calls
+  // Twins across a product's grouping: (-k * q[i]) * q[j] / r^3 * dx, Coulomb's force.
+  CHECK(newton_sign("f[i] = sum(j, |dx| < rc and |dx| > 0, -2 * m[i] * m[j] / pow(|dx|, 3) * dx)") ==
+        -1);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] * h[i] * W(|dx|) * h[j] / (r[j] * r[i]) * m[j])") ==
+        1);
 }
 
 TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
@@ -146,6 +151,8 @@ TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[j] * W(|dx|))") == 0);
   CHECK(newton_sign("n[i] = count(j, |dx| < r[i])") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] / m[j])") == 0);  // T gives m[j] / m[i]
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, 2 * m[i] / (h[i] * m[j]) * h[j])") == 0);
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] * m[i] * m[j])") == 0);  // one twin short
   // Mixed parity, in the term or the condition.
   CHECK(newton_sign("f[i] = sum(j, |dx| < rc, dx + vec(1, 0))") == 0);
   CHECK(newton_sign("u[i] = sum(j, dx.x > 0 and |dx| < 1, 1.0)") == 0);
