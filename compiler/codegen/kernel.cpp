@@ -221,6 +221,9 @@ void ModelEmitter::kernel(const Kernel& k) {
   std::vector<const Loop*> per_particle;
   std::string pairs_once;  // names the run-time choice of a search's pair walk
   for (const Loop& l : loops) {
+    if (!l.once && l.kind == SearchFact::Kind::Neighbours)
+      linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->"
+                                               : search_for(l.members.front()->id) + ".");
     if (l.once) {
       loop(l, st, names);
     } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {

@@ -438,15 +438,20 @@ void ModelEmitter::search_report() {
         alike[{search.set, search.structure}] == 1
             ? ""
             : fmt::format(" at line{} {}", lines.size() > 1 ? "s" : "", fmt::join(lines, ", "));
-    linef("report.push_back({{\"sums over {}{}{}\", {}.describe(), {}.build_count()}});",
-          m_.sets[search.set].name, at,
-          search.structure == SearchChoice::Auto
-              ? ""
-              : std::string(" (schedule: ") + search_choice_name(search.structure) + ")",
-          searches_[k], searches_[k]);
+    linef(
+        "report.push_back({{\"sums over {}{}{}\", {}.describe(), {}.build_count(), "
+        "{}.walk_count()}});",
+        m_.sets[search.set].name, at,
+        search.structure == SearchChoice::Auto
+            ? ""
+            : std::string(" (schedule: ") + search_choice_name(search.structure) + ")",
+        searches_[k], searches_[k], searches_[k]);
   }
   for (const auto& [st, lists] : lists_)
-    linef("if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count()}});", lists,
+    linef(
+        "if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count(), "
+        "{0}->walk_count()}});",
+        lists,
           (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
   line("return report;");
   line("}");

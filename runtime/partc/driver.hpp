@@ -358,7 +358,8 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
   if (!searches.empty()) text << "neighbour searches:\n";
   for (const SearchReport& s : searches)
     text << "  " << s.serves << ": " << s.structure << "; built " << s.builds
-         << (s.builds == 1 ? " time\n" : " times\n");
+         << (s.builds == 1 ? " time" : " times") << ", walked " << s.walks
+         << (s.walks == 1 ? " time\n" : " times\n");
   out << text.str();
 }
 

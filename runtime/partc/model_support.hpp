@@ -41,6 +41,7 @@ struct SearchReport {
   std::string serves;
   std::string structure;
   std::size_t builds;
+  std::size_t walks = 0;  // passes over the pairs (NeighbourSearch::note_walk)
 };
 
 template <class T>

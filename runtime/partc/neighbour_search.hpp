@@ -203,6 +203,11 @@ class NeighbourSearch {
   Kind kind() const { return kind_; }
   bool keeps_order() const { return keep_order_; }
   std::size_t build_count() const { return build_count_; }
+  // Pair walks: a kernel that sums over the neighbours of every particle (by
+  // for_each_pair or by queries) counts one, so a model's report shows how
+  // many passes over the pairs a step takes.
+  void note_walk() { ++walk_count_; }
+  std::size_t walk_count() const { return walk_count_; }
   // The structure of the last build, for people: "cell list", ...
   std::string describe() const {
     if (build_count_ == 0) return "not built yet";
@@ -298,6 +303,7 @@ class NeighbourSearch {
   std::vector<std::size_t> order_, rank_;  // Order::keep: sorted k -> set index, and back
   Kind kind_ = Kind::brute_force;
   std::size_t build_count_ = 0;
+  std::size_t walk_count_ = 0;
   std::size_t size_ = 0;
   BruteForce<D> brute_force_;
   OrderedCellList<D> cell_list_;

@@ -139,6 +139,9 @@ class VerletList {
   }
 
   std::size_t rebuild_count() const { return rebuild_count_; }
+  // Pair walks over the lists, as NeighbourSearch::note_walk counts them.
+  void note_walk() { ++walk_count_; }
+  std::size_t walk_count() const { return walk_count_; }
   double skin() const { return skin_; }
   // List entries at the last build (within the build reach): full lists, ordered
   // pairs (i, j) with i == j included; half lists, pairs i < j.
@@ -330,6 +333,7 @@ class VerletList {
   double skin_;
   VerletPairs pairs_;
   std::size_t rebuild_count_ = 0;
+  std::size_t walk_count_ = 0;
   Domain<D> domain_{};
   double radius_ = 0.0;
   double squared_radius_ = 0.0;
