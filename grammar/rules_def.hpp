@@ -574,11 +574,11 @@ auto const at_item_def = keyword("at") > identifier > ':' > assignment;
 
 // use_decl = "use" , dotted_name , [ "(" , [ use_argument , { "," , use_argument } ] , ")" ] ,
 //            "on" , identifier , { "," , identifier } , [ "as" , identifier ] ;
-// use_argument = identifier , "=" , expression ;
+// use_argument = [ "const" ] , identifier , "=" , expression ;
 auto const use_decl_def = keyword("use") > dotted_name >
                           -('(' > -(use_argument % ',') > ')') > keyword("on") >
                           (identifier % ',') > -(keyword("as") > identifier);
-auto const use_argument_def = identifier > '=' > expression;
+auto const use_argument_def = x3::matches[keyword("const")] >> identifier > '=' > expression;
 
 // order_decl = "order" , identifier , { "," , identifier } ;
 auto const set_instances = [](auto& ctx) { _val(ctx).instances = std::move(_attr(ctx)); };

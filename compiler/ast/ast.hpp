@@ -293,7 +293,10 @@ struct EffectDecl : Located {
   std::vector<EffectItem> items;
 };
 // use pair.lj(eps = 1.2) on A as lj_a
+// eps = 1.2, or const g = 0: folded into the instance as the effect's own
+// const parameters are (a literal, and a term it multiplies by 0 removed).
 struct UseArgument : Located {
+  bool is_const = false;
   Identifier name;
   Chain value;
 };

@@ -178,7 +178,8 @@ struct Printer {
   std::string operator()(const UseDecl& n) const {
     std::string out = "(use " + dotted(n.module) + " (";
     for (std::size_t k = 0; k < n.args.size(); ++k)
-      out += (k ? " " : "") + n.args[k].name.name + "=" + (*this)(n.args[k].value);
+      out += (k ? " " : "") + std::string(n.args[k].is_const ? "const " : "") +
+             n.args[k].name.name + "=" + (*this)(n.args[k].value);
     out += ") (on " + names(n.sets, " ") + ")";
     if (n.alias) out += " (as " + n.alias->name + ")";
     return out + ") " + at(n);

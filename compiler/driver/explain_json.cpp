@@ -43,6 +43,9 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
   Json out;
   out["model"] = c.model.name;
   if (c.scene.is_scene()) out["effects"] = scene_facts(c.scene, file);
+  out["folded"] = Json::array();
+  for (const ir::FoldedTerm& t : c.folded)
+    out["folded"].push_back({{"effect", t.effect}, {"target", t.target}, {"at", where(file, t.loc)}});
   out["fused"] = Json::array();
   for (const ir::InlinedVariable& v : c.single_use.inlined)
     out["fused"].push_back({{"set", v.set},

@@ -19,6 +19,9 @@ Compilation analyse(SourceFile& file, const SceneOptions& scene) {
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file, c.warnings);
+  // Terms a constant 0 removes (use force.gravity_z(const g = 0)): before
+  // fusion and the analyses, so nothing only they read is loaded or searched.
+  c.folded = ir::fold_zero_terms(c.model);
   // Fusion across statements: an effect's variable set and read once per
   // step is computed where it is read. Before the analyses, which see the
   // fused statements.
@@ -103,6 +106,10 @@ std::string explain(const Compilation& c, const SourceFile& file) {
   std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
                                 c.model.sets.size(), c.model.stages.size());
   out += explain_scene(c.scene, file);
+  for (const ir::FoldedTerm& t : c.folded)
+    out += fmt::format("folded: {}'s term of {} ({}) is 0 whatever the data (a constant 0 factor)\n",
+                       t.effect.empty() ? "a statement" : "effect " + t.effect, t.target,
+                       file.line_reference(t.loc.begin));
   for (const ir::InlinedVariable& v : c.single_use.inlined)
     out += fmt::format("fused: {}.{} is not stored: {} computes it where {} reads it\n", v.set,
                        v.var, file.line_reference(v.writer.begin),

@@ -6,6 +6,7 @@
 #include "analysis/coincident_pairs.hpp"
 #include "ast/ast.hpp"
 #include "codegen/codegen.hpp"
+#include "ir/fold_zero_terms.hpp"
 #include "ir/inline_single_use.hpp"
 #include "ir/ir.hpp"
 #include "sema/scene.hpp"
@@ -19,6 +20,7 @@ struct Compilation {
   ast::Program ast;   // the model itself: a scene with its effects instantiated
   ir::Model model;
   ModelFacts facts;
+  std::vector<ir::FoldedTerm> folded;  // terms a constant 0 removed
   ir::SingleUseReport single_use;  // variables computed in their reader, not stored
   CoincidenceReport coincident;  // for warnings and --explain only
   std::vector<Diagnostic> warnings;

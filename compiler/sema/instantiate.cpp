@@ -403,7 +403,7 @@ void Instantiation::declare_instances() {
         if (a.name.name == p.name.name) arg = &a;
       const ast::Chain value = arg ? arg->value : r.copy(p.value);
       const ast::Identifier name = named(r.names[p.name.name], p.name.loc);
-      if (p.is_const) {
+      if (p.is_const || (arg && arg->is_const)) {
         ast::ConstDecl c;
         c.loc = p.loc;
         c.name = name;

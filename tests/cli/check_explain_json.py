@@ -7,6 +7,8 @@ read as a tool would read them.
 import json
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 
 def facts(partc, scene, *extra):
@@ -45,7 +47,22 @@ def main():
     expect(without["effects"]["dropped"] == ["drag"], "dropped with --drop drag")
     expect("stdlib/force/drag.part" not in without["effects"]["modules_opened"],
            "a dropped effect's module was opened")
-    print("--explain=json: effects, modules, fusion, origins, liveness and --drop as expected")
+
+    # const gamma = 0 at the use line: drag's term is folded away, not computed.
+    with tempfile.TemporaryDirectory() as folder:
+        text = Path(scene).read_text()
+        use = next(line for line in text.splitlines() if line.startswith("use force.drag"))
+        folded_scene = Path(folder) / "folded.part"
+        folded_scene.write_text(text.replace(use, "use force.drag(const gamma = 0) on P"))
+        folded = facts(partc, str(folded_scene))
+    terms = [(t["effect"], t["target"]) for t in folded["folded"]]
+    expect(terms == [("drag", "P.f")], f"folded {terms}")
+    kick = [s for s in folded["statements"] if s["target"] == "v[i]"]
+    effects = [o["effect"] for o in kick[0]["origins"]]
+    expect(effects == ["soft_exp", "symplectic_euler"], f"origins of the folded kick {effects}")
+    expect(all_three["folded"] == [], "folded without a const 0")
+    print("--explain=json: effects, modules, fusion, origins, liveness, --drop and folding as "
+          "expected")
 
 
 if __name__ == "__main__":

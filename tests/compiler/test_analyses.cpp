@@ -204,3 +204,33 @@ TEST_CASE("uniform sums: a sum reading nothing of i is computed once", "[analysi
   CHECK(once("u[i] = sum(j, w[j] - w[i])") == std::vector<bool>{false});
   CHECK(once("u[i] = max(j, w[j] < w[i], w[j])") == std::vector<bool>{false});
 }
+
+namespace {
+
+// The step's statements after fold_zero_terms, as the IR printer writes them
+// (the 3-d model above, with const zero = 0).
+std::vector<std::string> folded(const std::string& step_body) {
+  const partc::Compilation c = compile_text(
+      "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\nparam r: real = 0.1\nconst zero = 0\n"
+      "particles P(10) {\n  u: real = 0\n  w: real = 1\n  f: vec = 0\n}\n"
+      "step P {\n" + step_body + "\n}\n");
+  std::vector<std::string> out;
+  for (const partc::ir::Stage& stage : c.model.stages)
+    for (const partc::ir::Statement& st : stage.statements)
+      out.push_back(partc::ir::to_string(st.value, c.model, st.labels));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("fold: a term with a constant 0 factor is removed", "[analysis]") {
+  CHECK(folded("u[i] += zero * w[i]").empty());                   // adds nothing: gone
+  CHECK(folded("f[i] += -w[i] * zero * vec(0, 0, 1)").empty());
+  CHECK(folded("u[i] = zero * sum(j, |dx| < r, w[j])") == std::vector<std::string>{"0"});
+  CHECK(folded("u[i] = sum(j, |dx| < r, zero * w[j]) / w[i]") == std::vector<std::string>{"0"});
+  // Not provably 0: kept as written.
+  CHECK(folded("u[i] += w[i] / zero").size() == 1);
+  CHECK(folded("u[i] += r * w[i]").size() == 1);
+  CHECK(folded("u[i] += zero * normal()").size() == 1);  // a draw: its noise stays as it was
+  CHECK(folded("u[i] += zero + w[i]").size() == 1);      // a model's own statement is one term
+}

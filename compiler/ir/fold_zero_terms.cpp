@@ -1,0 +1,158 @@
+#include "ir/fold_zero_terms.hpp"
+
+#include <memory>
+
+#include "ir/constant.hpp"
+#include "ir/visitor.hpp"
+
+namespace partc::ir {
+
+namespace {
+
+struct HasRandom : Visitor {
+  bool found = false;
+  using Visitor::visit;
+  void visit(const Random&) override { found = true; }
+};
+
+bool has_random(const Expr& e) {
+  HasRandom r;
+  r.visit(e);
+  return r.found;
+}
+
+// Whether e is 0 for every value of what it reads: a constant 0, a product
+// with such a factor, a quotient with such a numerator, or a vec of them.
+bool zero(const Expr& e, const Model& model) {
+  switch (e->kind) {
+    case ExprKind::Literal:
+    case ExprKind::ConstRef: {
+      const auto value = evaluate_constant(e, model);
+      return value && *value == 0;
+    }
+    case ExprKind::Unary: return as<Unary>(e)->op == UnaryOp::Neg && zero(as<Unary>(e)->operand, model);
+    case ExprKind::Binary: {
+      auto b = as<Binary>(e);
+      if (b->op == BinaryOp::Mul) return zero(b->lhs, model) || zero(b->rhs, model);
+      if (b->op == BinaryOp::Div) return zero(b->lhs, model);
+      return false;
+    }
+    case ExprKind::MakeVec:
+      for (const Expr& c : as<MakeVec>(e)->components)
+        if (!zero(c, model)) return false;
+      return true;
+    case ExprKind::Accumulate: {
+      auto acc = as<Accumulate>(e);
+      return acc->reduction == Reduction::Sum && zero(acc->body, model);
+    }
+    default: return false;
+  }
+}
+
+// One term of a contribution: its value and whether it is subtracted.
+struct Term {
+  Expr value;
+  bool minus;
+};
+
+// The n terms instantiation joined, t1 + t2 - t3 ... (left to right, the
+// first perhaps negated); one term when n is 1, whatever its shape.
+std::vector<Term> split(const Expr& value, std::size_t n) {
+  std::vector<Term> terms;
+  Expr rest = value;
+  for (; n > 1; --n) {
+    auto b = as<Binary>(rest);
+    terms.insert(terms.begin(), {b->rhs, b->op == BinaryOp::Sub});
+    rest = b->lhs;
+  }
+  if (rest->kind == ExprKind::Unary && as<Unary>(rest)->op == UnaryOp::Neg && !terms.empty())
+    terms.insert(terms.begin(), {as<Unary>(rest)->operand, true});
+  else
+    terms.insert(terms.begin(), {rest, false});
+  return terms;
+}
+
+Expr join(const std::vector<Term>& terms, Location loc) {
+  Expr out = terms.front().minus
+                 ? std::make_shared<Unary>(terms.front().value->type, UnaryOp::Neg,
+                                           terms.front().value, loc)
+                 : terms.front().value;
+  for (std::size_t k = 1; k < terms.size(); ++k)
+    out = std::make_shared<Binary>(out->type, terms[k].minus ? BinaryOp::Sub : BinaryOp::Add, out,
+                                   terms[k].value, loc);
+  return out;
+}
+
+Expr zero_of(Type type, int dim, Location loc) {
+  if (type != Type::Vec) return std::make_shared<Literal>(type, 0, loc);
+  return std::make_shared<MakeVec>(
+      std::vector<Expr>(dim, std::make_shared<Literal>(Type::Real, 0, loc)), loc);
+}
+
+// Whether there is anything to fold: a literal is as plain as 0 gets.
+bool plain(const Expr& e) {
+  if (e->kind == ExprKind::Literal) return true;
+  if (e->kind != ExprKind::MakeVec) return false;
+  for (const Expr& c : as<MakeVec>(e)->components)
+    if (c->kind != ExprKind::Literal) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<FoldedTerm> fold_zero_terms(Model& model) {
+  std::vector<FoldedTerm> folded;
+  for (Stage& stage : model.stages) {
+    std::vector<Statement> kept;
+    std::vector<int> index(stage.statements.size() + 1);  // old position -> new
+    for (std::size_t s = 0; s < stage.statements.size(); ++s) {
+      index[s] = static_cast<int>(kept.size());
+      Statement st = stage.statements[s];
+      const bool assigns =
+          st.op == AssignOp::Set || st.op == AssignOp::Add || st.op == AssignOp::Sub;
+      if (!assigns || st.solve_operator || plain(st.value)) {
+        kept.push_back(std::move(st));
+        continue;
+      }
+      // Instantiation joins the contributions of several effects, one per origin.
+      const bool own = st.origins.empty();
+      const std::size_t n = own ? 1 : st.origins.size();
+      const std::vector<Term> terms = split(st.value, n);
+      std::vector<Term> live;
+      std::vector<Origin> origins;
+      for (std::size_t k = 0; k < terms.size(); ++k) {
+        if (zero(terms[k].value, model) && !has_random(terms[k].value)) {
+          const std::string target =
+              st.observable >= 0 ? model.observables[st.observable].name
+                                 : model.sets[st.set].name + "." + model.sets[st.set].vars[st.var].name;
+          folded.push_back({own ? "" : st.origins[k].effect, own ? st.loc : st.origins[k].loc,
+                            target});
+          continue;
+        }
+        live.push_back(terms[k]);
+        if (!own) origins.push_back(st.origins[k]);
+      }
+      if (live.size() == terms.size()) {
+        kept.push_back(std::move(st));
+        continue;
+      }
+      if (live.empty()) {
+        if (st.op != AssignOp::Set) continue;  // adds nothing
+        st.value = zero_of(st.value->type, model.dim, st.value->loc);  // still theirs
+      } else {
+        st.value = join(live, st.value->loc);
+        st.origins = std::move(origins);
+      }
+      kept.push_back(std::move(st));
+    }
+    index[stage.statements.size()] = static_cast<int>(kept.size());
+    for (Iterate& loop : stage.loops) {
+      loop.first = index[loop.first];
+      loop.last = index[loop.last];
+    }
+    stage.statements = std::move(kept);
+  }
+  return folded;
+}
+
+}  // namespace partc::ir
