@@ -12,8 +12,10 @@
 
 namespace partc {
 
-Compilation analyse(SourceFile& file, const SceneOptions& scene) {
-  Compilation c;
+namespace {
+
+// The passes, in order: each fills its part of `c`.
+void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   // Text to syntax tree; syntax errors stop here, with what was expected.
   // A scene's effects are opened and instantiated: a plain model from here on.
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
@@ -41,6 +43,20 @@ Compilation analyse(SourceFile& file, const SceneOptions& scene) {
   c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
     if (fact.warning) c.warnings.push_back(*fact.warning);
+}
+
+}  // namespace
+
+Compilation analyse(SourceFile& file, const SceneOptions& scene) {
+  Compilation c;
+  try {
+    run_passes(file, scene, c);
+  } catch (const CompileError& e) {
+    std::vector<Diagnostic> diagnostics = e.diagnostics();
+    add_scene_context(diagnostics, c.scene, file);
+    throw CompileError(diagnostics);
+  }
+  add_scene_context(c.warnings, c.scene, file);
   return c;
 }
 

@@ -235,7 +235,7 @@ void Instantiation::find_instances() {
       if (!given.insert(arg.name.name).second)
         error(arg.name.loc, "parameter " + arg.name.name + " given twice");
     }
-    report_.kept.push_back({name, inst.module->name, inst.actual_sets, use->loc});
+    report_.kept.push_back({name, inst.module->name, inst.module->path, inst.actual_sets, use->loc});
     instances_.push_back(std::move(inst));
   }
   for (const std::string& name : options_.drop)
@@ -568,7 +568,7 @@ std::vector<ast::BlockStatement> Instantiation::slot_statements(const std::strin
                        " ";
     for (std::size_t k = 0; k < effects.size(); ++k) line += (k ? " + " : "") + effects[k];
     if (effects.size() > 1) line += " (merged into one statement)";
-    report_.placements.push_back(line);
+    report_.placements.push_back({name, line});
     out.emplace_back(std::move(st));
   }
   return out;

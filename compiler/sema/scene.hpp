@@ -32,6 +32,7 @@ struct SceneOptions {
 struct SceneReport {
   struct Instance {
     std::string name, module;
+    std::string path;  // the module's file, as messages name it
     std::vector<std::string> sets;
     Location use;
   };
@@ -40,7 +41,11 @@ struct SceneReport {
   std::vector<std::string> modules_opened;  // file names, in the order opened
   std::vector<std::string> module_files;    // the same, as paths to read (for --depfile)
   // One line per statement placed: slot, set, target and the effects merged into it.
-  std::vector<std::string> placements;
+  struct Placement {
+    std::string statement;  // its name, as liveness reports it
+    std::string text;
+  };
+  std::vector<Placement> placements;
   // Liveness: each statement dropped, and each variable, observable and
   // function an effect declared, kept or not and why.
   struct DroppedStatement {
@@ -61,6 +66,11 @@ struct SceneReport {
 // as it is. Appends each module opened to `file`. Throws CompileError.
 ast::Program instantiate_scene(const ast::Program& scene, SourceFile& file,
                                const SceneOptions& options, SceneReport& report);
+
+// Says, for each diagnostic in a module's text, which instances use it and
+// where their use lines are (a module's mistake shows in every scene using it).
+void add_scene_context(std::vector<Diagnostic>& diagnostics, const SceneReport& report,
+                       const SourceFile& file);
 
 // --explain's account of a scene: effects kept and dropped, modules opened,
 // where each statement went. Empty for a model that uses no effects.

@@ -25,6 +25,7 @@ std::string format_diagnostic(const SourceFile& file, const Diagnostic& d) {
   out += std::string(width - 1, '~');
   out += "\n";
   if (!d.note.empty()) out += "note: " + d.note + "\n";
+  if (!d.context.empty()) out += "note: " + d.context + "\n";
   return out;
 }
 

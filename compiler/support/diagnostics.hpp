@@ -19,6 +19,9 @@ struct Diagnostic {
   std::string message;
   std::string note = {};  // optional extra line ("note: ...") printed after the caret
   bool warning = false;   // a likely mistake that still compiles
+  // Where the text came from, when it is a module's: "in effect lj, used at
+  // scene.part:18", a last "note:" line.
+  std::string context = {};
 };
 
 // Thrown to abandon compilation after one or more errors (the diagnostics
