@@ -12,9 +12,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "codegen/model_emitter.hpp"
 #include "ir/constant.hpp"
+#include "ir/printer.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -135,7 +137,28 @@ std::string ModelEmitter::source_line(Location loc) const {
                      file_.line_column(loc.begin).line);
 }
 
+std::vector<std::pair<std::string, std::vector<const Statement*>>> ModelEmitter::lists_served()
+    const {
+  std::vector<std::pair<std::string, std::vector<const Statement*>>> out;
+  for (const Stage& stage : m_.stages)
+    for (const Statement& st : stage.statements) {
+      auto it = lists_.find(&st);
+      if (it == lists_.end()) continue;
+      auto same = std::find_if(out.begin(), out.end(),
+                               [&](const auto& entry) { return entry.first == it->second; });
+      if (same == out.end())
+        out.push_back({it->second, {&st}});
+      else
+        same->second.push_back(&st);
+    }
+  return out;
+}
+
 void ModelEmitter::plan_searches() {
+  // Statements whose lists would hold the same pairs share them -- one set,
+  // one skin, one radius, half or full alike -- so a step builds them once
+  // and one rebuild's reordering of the set cannot stale another's lists.
+  std::map<std::string, std::string> shared;  // that key -> the lists' member
   for (const Stage& stage : m_.stages)
     for (const Statement& st : stage.statements) {
       StatementUses uses;
@@ -144,12 +167,17 @@ void ModelEmitter::plan_searches() {
       if (st.solve_operator)
         solve_results_[&st] = members_.fresh(
             (st.name.empty() ? m_.sets[st.set].vars[st.var].name : st.name) + "_solve_");
+      std::set<std::string> radii;
       for (const Accumulate* acc : uses.accumulations)
-        if (st.schedule.skin &&
-            facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours &&
-            !lists_.count(&st))
-          lists_[&st] =
-              members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
+        if (facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
+          radii.insert(ir::to_string(facts_.neighbourhoods.at(acc->id).radius, m_, st.labels));
+      if (!st.schedule.skin || radii.empty()) continue;
+      const std::string key = fmt::format("{} {} {} {}", st.set, source_text(st.schedule.skin->loc),
+                                          half_lists(st), fmt::join(radii, " "));
+      auto [it, fresh] = shared.insert({key, ""});
+      if (fresh)
+        it->second = members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
+      lists_[&st] = it->second;
     }
   // The plan's searches: P_search_, or P_kd_tree_ when forced; a set's second
   // search of one structure P_search_2_ (sums apart from the first's).
@@ -447,12 +475,15 @@ void ModelEmitter::search_report() {
             : std::string(" (schedule: ") + search_choice_name(search.structure) + ")",
         searches_[k], searches_[k], searches_[k]);
   }
-  for (const auto& [st, lists] : lists_)
+  for (const auto& [lists, statements] : lists_served()) {
+    std::vector<std::string> served;
+    for (const Statement* st : statements)
+      served.push_back((st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
     linef(
         "if ({0}) report.push_back({{\"{1}\", {0}->describe(), {0}->rebuild_count(), "
         "{0}->walk_count()}});",
-        lists,
-          (st->name.empty() ? "" : st->name + " at ") + source_line(st->loc));
+        lists, fmt::format("{}", fmt::join(served, ", ")));
+  }
   line("return report;");
   line("}");
 }
@@ -739,9 +770,9 @@ void ModelEmitter::state() {
     linef("std::uint64_t {}epoch_ = std::numeric_limits<std::uint64_t>::max();", searches_[k]);
     linef("double {}radius_ = 0;", searches_[k]);
   }
-  for (const auto& [st, lists] : lists_)
+  for (const auto& [lists, statements] : lists_served())
     linef("std::optional<partc::VerletList<{}>> {};  // schedule: skin {}", m_.dim, lists,
-          source_text(st->schedule.skin->loc));
+          source_text(statements.front()->schedule.skin->loc));
   for (const auto& [st, result] : solve_results_)
     linef("partc::SolveResult {};  // the last solve of {}", result, source_line(st->loc));
   if (!solve_results_.empty()) line("std::string matrix_market_;  // \"\": no Matrix Market files");

@@ -218,6 +218,8 @@ class ModelEmitter {
   std::map<int, std::string> compensation_;  // accumulation id -> its Neumaier error's local
   std::vector<std::string> searches_;        // per SearchPlan::searches
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
+  // Each lists member and the statements it serves, in program order.
+  std::vector<std::pair<std::string, std::vector<const Statement*>>> lists_served() const;
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
   std::map<std::string, std::string> stage_methods_;  // named stage -> its method
