@@ -32,11 +32,13 @@ struct Renamer {
   std::map<std::string, std::string> names;  // local -> qualified
   std::map<std::string, std::string> sets;   // formal -> actual
   std::map<std::string, std::string> vars;   // local variables -> the instance's
+  std::set<std::string> params;  // a function's own parameters, named as they are
   const std::set<std::string>* scene_names = nullptr;
   std::string instance;  // empty in a module's own functions and constants
   std::vector<Diagnostic>* problems = nullptr;
 
   void identifier(ast::Identifier& id) const {
+    if (params.count(id.name)) return;
     if (auto it = names.find(id.name); it != names.end()) {
       id.name = it->second;
     } else if (auto set = sets.find(id.name); set != sets.end()) {
@@ -307,7 +309,7 @@ const Renamer& Instantiation::declare_module(const scene::Module& module) {
     if (auto f = boost::get<ast::FnDecl>(&decl)) {
       ast::FnDecl copy = *f;
       Renamer body = scope;
-      for (const ast::FnParam& a : f->params) body.names.erase(a.name.name);
+      for (const ast::FnParam& a : f->params) body.params.insert(a.name.name);
       copy.name.name = scope.names[f->name.name];
       body.chain(copy.value);
       made_.declared.emplace_back(copy);
