@@ -177,21 +177,15 @@ void ModelEmitter::kernel(const Kernel& k) {
   // Bring every search this statement needs up to date before any index
   // is taken: a rebuild may reorder its set. Verlet lists, per statement, at
   // this statement's largest radius; searches as the plan groups the sums.
-  std::vector<std::string> list_radii;
   std::vector<int> groups;
   for (const Accumulate* acc : uses.accumulations) {
-    const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
-    if (fact.kind != SearchFact::Kind::Neighbours) continue;
-    if (st.schedule.skin) {
-      const std::string radius = radius_expression(fact, st, names);
-      if (std::find(list_radii.begin(), list_radii.end(), radius) == list_radii.end())
-        list_radii.push_back(radius);
+    if (st.schedule.skin ||
+        facts_.neighbourhoods.at(acc->id).kind != SearchFact::Kind::Neighbours)
       continue;
-    }
     const int group = facts_.searches.group_of.at(acc->id);
     if (std::find(groups.begin(), groups.end(), group) == groups.end()) groups.push_back(group);
   }
-  if (!list_radii.empty()) refresh_lists(st, list_radii, locals.fresh("radius"), names);
+  if (lists_.count(&st)) refresh_lists(st, locals.fresh("radius"), names);
   for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
@@ -338,12 +332,8 @@ void ModelEmitter::refresh_search(int group_index, const Statement& st,
   for (std::size_t k = 0; k < group.sums.size(); ++k) {
     const auto [g, s] = group.statements[k];
     const Statement& owner = m_.stages[g].statements[s];
-    ExpressionNames theirs = base_names();
-    theirs.home_set = owner.set;
-    for (const Label& l : owner.labels) theirs.labels.push_back(cpp_name(l.name));
-    theirs.array = [this](int set, int var) { return array_access(set, var); };
     const std::string radius = radius_expression(facts_.neighbourhoods.at(group.sums[k]), owner,
-                                                 &owner == &st ? names : theirs);
+                                                 &owner == &st ? names : names_outside(owner));
     if (std::find(radii.begin(), radii.end(), radius) == radii.end()) radii.push_back(radius);
   }
   std::string radius = radii.front();
@@ -366,6 +356,16 @@ void ModelEmitter::refresh_search(int group_index, const Statement& st,
     linef("{}epoch_ = {};  // {} keeps its order", search, epoch_[s], m_.sets[s].name);
   linef("{}radius_ = {};", search, local);
   line("}");
+}
+
+// Another statement's names, for its expressions in this kernel: members and
+// arrays, not the locals its own kernel would have.
+ExpressionNames ModelEmitter::names_outside(const Statement& owner) const {
+  ExpressionNames theirs = base_names();
+  theirs.home_set = owner.set;
+  for (const Label& l : owner.labels) theirs.labels.push_back(cpp_name(l.name));
+  theirs.array = [this](int set, int var) { return array_access(set, var); };
+  return theirs;
 }
 
 // The search radius: the bound itself when it is uniform, else the sum of
@@ -408,13 +408,30 @@ bool ModelEmitter::newton_pairs(const Statement& st) const {
 }
 
 // Verlet lists: reused while no particle has moved half the skin since
-// they were built; a rebuild may reorder the set, like a search build.
-void ModelEmitter::refresh_lists(const Statement& st, const std::vector<std::string>& radii,
-                                 const std::string& local, const ExpressionNames& names) {
+// they were built; a rebuild may reorder the set, like a search build. Lists
+// shared by several statements are built at the largest radius of all their
+// sums (each in its own statement's names), so every kernel asks the same.
+void ModelEmitter::refresh_lists(const Statement& st, const std::string& local,
+                                 const ExpressionNames& names) {
+  const std::string& lists = lists_.at(&st);
+  std::vector<std::string> radii;
+  for (const auto& [member, statements] : lists_served()) {
+    if (member != lists) continue;
+    for (const Statement* owner : statements) {
+      StatementUses uses;
+      uses.visit(owner->value);
+      for (const Accumulate* acc : uses.accumulations) {
+        const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
+        if (fact.kind != SearchFact::Kind::Neighbours) continue;
+        const std::string radius =
+            radius_expression(fact, *owner, owner == &st ? names : names_outside(*owner));
+        if (std::find(radii.begin(), radii.end(), radius) == radii.end()) radii.push_back(radius);
+      }
+    }
+  }
   std::string radius = radii.front();
   for (std::size_t k = 1; k < radii.size(); ++k)
     radius = "std::max(" + radius + ", " + radii[k] + ")";
-  const std::string& lists = lists_.at(&st);
   const std::string skin = expression(st.schedule.skin, names);
   linef("const double {} = {};", local, radius);
   linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1}{2});", lists, skin,

@@ -12,11 +12,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <set>
 
 #include "codegen/model_emitter.hpp"
 #include "ir/constant.hpp"
-#include "ir/printer.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -155,9 +153,11 @@ std::vector<std::pair<std::string, std::vector<const Statement*>>> ModelEmitter:
 }
 
 void ModelEmitter::plan_searches() {
-  // Statements whose lists would hold the same pairs share them -- one set,
-  // one skin, one radius, half or full alike -- so a step builds them once
-  // and one rebuild's reordering of the set cannot stale another's lists.
+  // Statements whose lists would serve alike share them -- one set, one
+  // skin, half or full alike -- built at the largest of their radii (each
+  // sum keeps its own cutoff test): a step builds them once, and no rebuild
+  // reorders the set under another statement's lists (which would then
+  // rebuild too, every step, as two lists at two radii did).
   std::map<std::string, std::string> shared;  // that key -> the lists' member
   for (const Stage& stage : m_.stages)
     for (const Statement& st : stage.statements) {
@@ -167,13 +167,13 @@ void ModelEmitter::plan_searches() {
       if (st.solve_operator)
         solve_results_[&st] = members_.fresh(
             (st.name.empty() ? m_.sets[st.set].vars[st.var].name : st.name) + "_solve_");
-      std::set<std::string> radii;
-      for (const Accumulate* acc : uses.accumulations)
-        if (facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
-          radii.insert(ir::to_string(facts_.neighbourhoods.at(acc->id).radius, m_, st.labels));
-      if (!st.schedule.skin || radii.empty()) continue;
-      const std::string key = fmt::format("{} {} {} {}", st.set, source_text(st.schedule.skin->loc),
-                                          half_lists(st), fmt::join(radii, " "));
+      const bool neighbours =
+          std::any_of(uses.accumulations.begin(), uses.accumulations.end(), [&](const auto* acc) {
+            return facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours;
+          });
+      if (!st.schedule.skin || !neighbours) continue;
+      const std::string key =
+          fmt::format("{} {} {}", st.set, source_text(st.schedule.skin->loc), half_lists(st));
       auto [it, fresh] = shared.insert({key, ""});
       if (fresh)
         it->second = members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");

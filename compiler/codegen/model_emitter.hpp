@@ -172,8 +172,8 @@ class ModelEmitter {
   // walk when NeighbourSearch::pairs_once says it pays (else per-particle queries).
   bool half_lists(const Statement& st) const { return st.schedule.skin && newton_pairs(st); }
   bool newton_pairs(const Statement& st) const;
-  void refresh_lists(const Statement& st, const std::vector<std::string>& radii,
-                     const std::string& local, const ExpressionNames& names);
+  void refresh_lists(const Statement& st, const std::string& local, const ExpressionNames& names);
+  ExpressionNames names_outside(const Statement& owner) const;
 
   // Accumulations of one statement over the same set, found the same way
   // (the same search, or the same dense loop), share one pass: SPH's
