@@ -20,11 +20,8 @@
 // each with Verlet lists (skin 0.3, rebuilt when some atom moved half the
 // skin), as examples/lj_melt.part, and fused, separate and one radius also
 // with a cell list built every step, the one search both statements of
-// separate share. With Verlet lists each statement has its own lists, so
-// separate also builds twice as many lists; and with two radii each set's
-// rebuild reorders A by its own grid, which makes the other rebuild: both
-// rebuild every step. A shared cell list asked for two radii is built twice
-// a step. One radius avoids both.
+// separate share. The statements of separate share one set of Verlet lists
+// too, built at the larger radius (one build, two walks).
 //
 // In order:
 // 1. physics, untimed: every variant from the same start; its forces after
