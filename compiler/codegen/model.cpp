@@ -132,7 +132,7 @@ void ModelEmitter::line(const std::string& text) {
 std::string ModelEmitter::source_line(Location loc) const {
   return fmt::format("{}:{}",
                      file_.file_of(loc.begin) == 0 ? options_.source_name : file_.path_of(loc.begin),
-                     file_.line_column(loc.begin).line);
+                     file_.output_line(loc.begin));
 }
 
 std::vector<std::pair<std::string, std::vector<const Statement*>>> ModelEmitter::lists_served()

@@ -197,6 +197,9 @@ void Instantiation::find_instances() {
     }
     if (std::count(options_.drop.begin(), options_.drop.end(), name)) {
       report_.dropped.push_back(name);
+      // The C++ numbers the scene's lines as if this one were deleted.
+      file_.omit_lines(file_.line_column(use->loc.begin).line,
+                       file_.line_column(use->loc.end - 1).line);
       continue;
     }
     Instance inst;

@@ -192,7 +192,7 @@ ir::Statement Sema::particle_statement(const ast::Target& target, Location loc, 
   ir::Statement st;
   st.set = set_index;
   st.loc = loc;
-  st.line = file_.line_column(loc.begin).line;
+  st.line = file_.output_line(loc.begin);
   st.var = set.find_var(target.var.name);
   if (st.var < 0) not_assignable(target.var, set);
   if (st.var < 0)
@@ -257,7 +257,7 @@ ir::Statement Sema::check_observable_statement(const ast::Assignment& a, int set
   st.var = -1;
   st.observable = it->second.index;
   st.loc = a.loc;
-  st.line = file_.line_column(a.loc.begin).line;
+  st.line = file_.output_line(a.loc.begin);
   st.labels.push_back({"", set_index});
   statement_target_ = a.target.loc;
   st.op = assign_op(a.op);

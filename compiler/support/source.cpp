@@ -62,6 +62,17 @@ std::string SourceFile::line_reference(std::uint32_t offset) const {
                               : path_of(offset) + ":" + std::to_string(line);
 }
 
+void SourceFile::omit_lines(int first, int last) { omitted_.push_back({first, last}); }
+
+int SourceFile::output_line(std::uint32_t offset) const {
+  int line = line_column(offset).line;
+  if (file_of(offset) != 0) return line;
+  const int at = line;
+  for (const auto& [first, last] : omitted_)
+    if (last < at) line -= last - first + 1;
+  return line;
+}
+
 std::string_view SourceFile::slice(Location loc) const {
   return std::string_view(text_).substr(loc.begin, loc.end - loc.begin);
 }

@@ -53,6 +53,12 @@ class SourceFile {
   // for notes that point from one place to another.
   std::string line_reference(std::uint32_t offset) const;
 
+  // Lines of the model's file the output numbers as if deleted (--drop's use
+  // lines): the generated code cites the line a statement would have in the
+  // model without them, while messages keep citing the file as it is.
+  void omit_lines(int first, int last);
+  int output_line(std::uint32_t offset) const;
+
  private:
   struct Segment {
     std::string path;
@@ -62,6 +68,7 @@ class SourceFile {
   std::string text_;
   std::vector<std::uint32_t> line_starts_;
   std::vector<Segment> segments_;
+  std::vector<std::pair<int, int>> omitted_;  // [first, last] lines of file 0
 };
 
 // Reads a whole file; throws std::runtime_error when it cannot.
