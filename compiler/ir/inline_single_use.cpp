@@ -154,6 +154,8 @@ class Inliner {
     UseOf use(s, x);
     use.visit(reader.value);
     if (!use.only_home) return refuse(s, x, "its reader reads it at another particle or in a sum");
+    if (use.uses > 1)
+      return refuse(s, x, "its reader reads it more than once (each read would compute it again)");
     if (!default_schedule(writer.schedule) && !default_schedule(reader.schedule))
       return refuse(s, x, "both statements have a schedule");
     // Nothing between them may change what the writer reads.

@@ -10,8 +10,8 @@
 // and needs no pass of its own. Legal only when nothing between the two
 // statements writes anything the writer reads (the value would differ), the
 // reader reads the variable at i outside every sum (a sum would evaluate the
-// writer's sums once per pair), and no output, initial value or other
-// statement reads it.
+// writer's sums once per pair) and once (twice would compute it twice), and no
+// output, initial value or other statement reads it.
 #pragma once
 
 #include <string>
