@@ -205,6 +205,9 @@ struct FnDecl : Located {
   Identifier name;
   std::vector<FnParam> params;
   Chain value;
+  // A module's function (or a scene's alias of one): its parameters are its
+  // own names, and may be those of the scene's declarations.
+  bool from_module = false;
 };
 // init [SET] { ... }, step [SET] { ... } or stage NAME [SET] { ... }: the
 // words after the keyword are the set, or the name and the set (sema reads them).

@@ -199,7 +199,7 @@ void Sema::declare_fn(const ast::FnDecl& decl) {
   for (const ast::FnParam& a : decl.params) {
     if (std::find(fn.arg_names.begin(), fn.arg_names.end(), a.name.name) != fn.arg_names.end())
       fail(a.name.loc, "argument " + quoted(a.name.name) + " listed twice");
-    if (names_.count(a.name.name) || is_builtin_name(a.name.name))
+    if ((!decl.from_module && names_.count(a.name.name)) || is_builtin_name(a.name.name))
       fail(a.name.loc, "argument " + quoted(a.name.name) +
                            " has the name of a param, const, set, function or builtin");
     fn.arg_names.push_back(a.name.name);

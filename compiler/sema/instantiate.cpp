@@ -314,6 +314,7 @@ const Renamer& Instantiation::declare_module(const scene::Module& module) {
       Renamer body = scope;
       for (const ast::FnParam& a : f->params) body.params.insert(a.name.name);
       copy.name.name = scope.names[f->name.name];
+      copy.from_module = true;
       body.chain(copy.value);
       made_.declared.emplace_back(copy);
     }
@@ -371,6 +372,7 @@ void Instantiation::import_into_scene() {
       alias.loc = f.loc;
       alias.name = f.name;
       alias.params = f.params;
+      alias.from_module = true;
       ast::Call call;
       call.loc = f.loc;
       call.callee = original;
