@@ -530,7 +530,8 @@ std::vector<ast::BlockStatement> Instantiation::slot_statements(const std::strin
       st.value.loc = first.st->value.loc;
       bool empty = true;
       for (const Placed& term : placed) {
-        if (term.inst->var(term.st->target.var.name) != var) continue;
+        // An effect's own statement replacing the variable at this slot is not a term.
+        if (!adds(term) || term.inst->var(term.st->target.var.name) != var) continue;
         if (term.st->target.label && first.st->target.label &&
             term.st->target.label->name != first.st->target.label->name)
           error(term.st->target.loc,
