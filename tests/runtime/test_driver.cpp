@@ -90,9 +90,10 @@ class Toy {
 
   void check_finite() const { partc::check_finite(p_, "P", step_); }
 
-  // As if one search over P were rebuilt every step.
+  // As if one search over P were rebuilt and walked every step.
   std::vector<partc::SearchReport> search_report() const {
-    return {{"sums over P", "cell list, 4 cells", static_cast<std::size_t>(step_)}};
+    return {{"sums over P", "cell list, 4 cells", static_cast<std::size_t>(step_),
+             static_cast<std::size_t>(step_)}};
   }
 
  private:
@@ -231,8 +232,8 @@ TEST_CASE("driver: a run prints a summary per set unless --quiet", "[driver]") {
   // hits counts the steps, so its min, mean and max are all 3.
   CHECK(result.out.find("\n  hits" + std::string(21, ' ') + "3" + std::string(13, ' ') + "3" +
                         std::string(13, ' ') + "3\n") != std::string::npos);
-  CHECK(result.out.find("\nneighbour searches:\n  sums over P: cell list, 4 cells; built 3 times\n") !=
-        std::string::npos);
+  CHECK(result.out.find("\nneighbour searches:\n  sums over P: cell list, 4 cells; built 3 times, "
+                        "walked 3 times\n") != std::string::npos);
 
   const Run quiet = run({"--steps", "3", "--quiet"});
   CHECK(quiet.status == 0);
