@@ -14,10 +14,11 @@
 // m[i] * m[j], max(h[i], h[j]) -- and a difference of twins, v[j] - v[i], is
 // odd. Products are judged whole: k * q[i] * q[j] / r is even although
 // (k * q[i]) * q[j] groups q[i] apart from its twin, because factors pair up
-// with their twins across the product's grouping. A user function's call is judged by its body with the arguments put
-// in (ir/inline_calls.hpp): amix(a[i], a[j]) with fn amix(x, y) = sqrt(x * y)
-// is even, because x * y becomes a[i] * a[j]; past the inlining budget, a
-// call is even when its arguments are. The rules are sound, not complete:
+// with their twins across the product's grouping. A user function's call is
+// judged by its body with the arguments put in (ir/inline_calls.hpp):
+// amix(a[i], a[j]) with fn amix(x, y) = sqrt(x * y) is even, because x * y
+// becomes a[i] * a[j]; past the inlining budget, a call is even when its
+// arguments are. The rules are sound, not complete:
 // what they cannot show symmetric is evaluated both ways, which is always
 // correct.
 //

@@ -1,8 +1,6 @@
 // --explain=json: the facts --explain prints, as one JSON document, for
 // tests and tools. The reasons are the analyses' own strings; this file only
 // arranges them (nlohmann::json writes and escapes).
-#include <algorithm>
-
 #include <nlohmann/json.hpp>
 
 #include "driver/pipeline.hpp"
@@ -29,11 +27,10 @@ Json scene_facts(const SceneReport& scene, const SourceFile& file) {
   out["dropped"] = scene.dropped;
   out["modules_opened"] = scene.modules_opened;
   out["placements"] = Json::array();
-  for (const SceneReport::Placement& p : scene.placements) {
-    const bool dropped = std::any_of(scene.dropped_statements.begin(), scene.dropped_statements.end(),
-                                     [&](const auto& d) { return d.name == p.statement; });
-    out["placements"].push_back({{"statement", p.statement}, {"text", p.text}, {"kept", !dropped}});
-  }
+  for (const SceneReport::Placement& p : scene.placements)
+    out["placements"].push_back({{"statement", p.statement},
+                                 {"text", p.text},
+                                 {"kept", !scene.dropped_statement(p.statement)}});
   out["liveness"] = Json::array();
   for (const SceneReport::Decision& d : scene.variables)
     out["liveness"].push_back({{"what", d.what}, {"kept", d.kept}, {"why", d.why}});

@@ -24,12 +24,8 @@ bool has_random(const Expr& e) {
 // Whether e is 0 for every value of what it reads: a constant 0, a product
 // with such a factor, a quotient with such a numerator, or a vec of them.
 bool zero(const Expr& e, const Model& model) {
+  if (const auto value = evaluate_constant(e, model)) return *value == 0;
   switch (e->kind) {
-    case ExprKind::Literal:
-    case ExprKind::ConstRef: {
-      const auto value = evaluate_constant(e, model);
-      return value && *value == 0;
-    }
     case ExprKind::Unary: return as<Unary>(e)->op == UnaryOp::Neg && zero(as<Unary>(e)->operand, model);
     case ExprKind::Binary: {
       auto b = as<Binary>(e);

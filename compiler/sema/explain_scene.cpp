@@ -1,8 +1,6 @@
 // --explain for scenes: the text lives beside the instantiation that decided it.
 #include <fmt/format.h>
 
-#include <algorithm>
-
 #include "sema/scene.hpp"
 
 namespace partc {
@@ -21,12 +19,8 @@ std::string explain_scene(const SceneReport& report, const SourceFile& file) {
   for (const std::string& path : report.modules_opened) out += "  " + path + "\n";
   if (!report.placements.empty()) out += "statements placed at slots:\n";
   for (const SceneReport::Placement& p : report.placements) {
-    auto dropped = std::find_if(report.dropped_statements.begin(), report.dropped_statements.end(),
-                                [&](const auto& d) { return d.name == p.statement; });
-    out += "  " + p.text +
-           (dropped == report.dropped_statements.end()
-                ? ""
-                : " -- dropped: nothing kept reads " + dropped->target) +
+    const SceneReport::DroppedStatement* dropped = report.dropped_statement(p.statement);
+    out += "  " + p.text + (dropped ? " -- dropped: nothing kept reads " + dropped->target : "") +
            "\n";
   }
   if (!report.variables.empty() || !report.dropped_statements.empty()) {

@@ -120,6 +120,13 @@ ast::Operand parenthesised(ast::Chain c) {
   return ast::Operand(ast::x3::forward_ast<ast::Chain>(c));
 }
 
+// The name a module's function or constant declares; null for anything else.
+const ast::Identifier* declared_name(const ast::Declaration& decl) {
+  if (auto f = boost::get<ast::FnDecl>(&decl)) return &f->name;
+  if (auto c = boost::get<ast::ConstDecl>(&decl)) return &c->name;
+  return nullptr;
+}
+
 // The statements of one slot on one set, as they run.
 struct Placed {
   const Instance* inst;
@@ -285,9 +292,7 @@ const Renamer& Instantiation::declare_module(const scene::Module& module) {
   for (const scene::Module* imported : module.imports) {
     const Renamer& theirs = declare_module(*imported);
     for (const ast::Declaration& decl : imported->program.declarations) {
-      const ast::Identifier* name = nullptr;
-      if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
-      if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
+      const ast::Identifier* name = declared_name(decl);
       if (!name) continue;
       auto [it, fresh] = from.insert({name->name, imported->name});
       if (!fresh && it->second != imported->name)
@@ -298,9 +303,7 @@ const Renamer& Instantiation::declare_module(const scene::Module& module) {
     }
   }
   for (const ast::Declaration& decl : module.program.declarations) {
-    const ast::Identifier* name = nullptr;
-    if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
-    if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
+    const ast::Identifier* name = declared_name(decl);
     if (!name) continue;
     if (auto it = from.find(name->name); it != from.end())
       error(name->loc, module.name + " declares " + name->name + ", which it imports from " +
@@ -338,9 +341,7 @@ void Instantiation::import_into_scene() {
     const scene::Module& module = library_.open(*import);
     const Renamer& scope = declare_module(module);
     for (const ast::Declaration& d : module.program.declarations) {
-      const ast::Identifier* name = nullptr;
-      if (auto f = boost::get<ast::FnDecl>(&d)) name = &f->name;
-      if (auto c = boost::get<ast::ConstDecl>(&d)) name = &c->name;
+      const ast::Identifier* name = declared_name(d);
       if (!name) continue;
       if (scene_names_.count(name->name) && !from.count(name->name)) {
         error(import->loc,

@@ -5,8 +5,7 @@
 // dropped here never reaches sema, so no variable is stored, no statement
 // computed, no search built and no function emitted for it. The roots are
 // explicit: everything the scene itself declares or writes (its functions'
-// calls too), positions, `output`
-// lines and schedule entries. From them, a statement an effect placed is kept
+// calls too), positions, `output` lines and schedule entries. From them, a statement an effect placed is kept
 // when its target is kept, and a target is kept when a kept statement (or a
 // kept variable's initial value) reads it; functions of a module are kept
 // when something kept calls them. Names are compared as written, so a

@@ -59,6 +59,12 @@ struct SceneReport {
     std::string why;
   };
   std::vector<Decision> variables;
+  // The liveness drop of a placed statement, by its name; null when kept.
+  const DroppedStatement* dropped_statement(const std::string& name) const {
+    for (const DroppedStatement& d : dropped_statements)
+      if (d.name == name) return &d;
+    return nullptr;
+  }
   bool is_scene() const { return !kept.empty() || !dropped.empty() || !modules_opened.empty(); }
 };
 
