@@ -1,7 +1,8 @@
 # CMake functions that compile a .part model with partc as part of a build.
 #
-#   partc_add_model(<target> <file.part>)
-#       an executable: the generated model plus its command-line driver.
+#   partc_add_model(<target> <file.part> [PARTC_FLAGS flag...])
+#       an executable: the generated model plus its command-line driver
+#       (PARTC_FLAGS: more of partc's options, e.g. --profile).
 #   partc_add_model_library(<target> <file.part>)
 #       an INTERFACE library whose include path holds <file>.hpp, the
 #       generated model class, for C++ code that drives the model itself.
@@ -28,9 +29,10 @@ if(NOT DEFINED PARTC_EXECUTABLE_DEPENDS AND TARGET partc)
 endif()
 
 function(partc_add_model target part_file)
+  cmake_parse_arguments(PARSE_ARGV 2 model "" "" "PARTC_FLAGS")
   get_filename_component(stem ${part_file} NAME_WE)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen/${stem}.cpp)
-  _partc_generate(${part_file} ${out} "--main")
+  _partc_generate(${part_file} ${out} "--main;${model_PARTC_FLAGS}")
   add_executable(${target} ${out})
   target_link_libraries(${target} PRIVATE partc_runtime)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror)

@@ -17,6 +17,7 @@ namespace partc {
 struct CodegenOptions {
   bool driver_main = false;   // also emit int main() running partc::run_driver
   std::string source_name;    // how the .part file is named in comments
+  bool profile = false;       // time step kernels and searches per effect (partc::Profile)
 };
 
 // The facts lowering acts on, computed by the analyses.

@@ -16,6 +16,7 @@
 
 #include "codegen/model_emitter.hpp"
 #include "ir/constant.hpp"
+#include "ir/terms.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc::codegen {
@@ -39,6 +40,52 @@ void ModelEmitter::plan_kernels() {
                           {static_cast<int>(g), static_cast<int>(k)}});
     }
   }
+  if (!options_.profile) return;
+  // kernels_ grows with the variants: positions, not pointers, until it is whole.
+  std::vector<std::size_t> step_kernels;
+  for (std::size_t k = 0; k < kernels_.size(); ++k)
+    if (m_.stages[kernels_[k].position.first].kind == StageKind::Step) step_kernels.push_back(k);
+  for (std::size_t n = 0; n < step_kernels.size(); ++n) {
+    kernels_[step_kernels[n]].profiled = static_cast<int>(n);
+    plan_calibration(kernels_[step_kernels[n]]);
+  }
+  for (const Kernel& k : kernels_)
+    if (k.profiled >= 0) profiled_.push_back(&k);
+}
+
+// A statement of several effects' terms, each a sum of its own or not, is
+// timed whole and without each term after the run (partc::Profile splits
+// its time by their marginal costs). Not for statements that move or remove
+// particles, observables, solves, or a statement whose variant would walk
+// pairs otherwise than it does (a term that breaks symmetry, dropped).
+void ModelEmitter::plan_calibration(const Kernel& k) {
+  const Statement& st = *k.st;
+  if (!st.terms_by_origin || st.origins.size() < 2 || st.observable >= 0 || st.solve_operator ||
+      st.var == kPosition || st.var == kAlive)
+    return;
+  const std::vector<Term> terms = split_terms(st.value, st.origins.size());
+  Calibration calibration{k.profiled, {}};
+  const std::string sink = buffer_member(st.set, st.var, true);
+  std::vector<Kernel> variants;
+  for (std::size_t o = 0; o <= st.origins.size(); ++o) {
+    Statement variant = st;
+    if (o > 0) {
+      std::vector<Term> rest = terms;
+      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o - 1));
+      variant.value = join_terms(rest, st.value->loc);
+      variant.origins.erase(variant.origins.begin() + static_cast<std::ptrdiff_t>(o - 1));
+      if (newton_pairs(variant) != newton_pairs(st)) return;
+    }
+    variants_.push_back(std::move(variant));
+    const Statement* v = &variants_.back();
+    if (lists_.count(&st)) lists_[v] = lists_.at(&st);
+    const std::string name = members_.fresh(
+        k.name + (o == 0 ? "_whole" : "_without_" + cpp_name(st.origins[o - 1].effect)));
+    variants.push_back({name, v, k.alias, k.position, sink});
+    calibration.variants.push_back(name);
+  }
+  kernels_.insert(kernels_.end(), variants.begin(), variants.end());
+  calibrations_.push_back(std::move(calibration));
 }
 
 // The calls of every stage of one kind (of one name), in order; an iterate
@@ -50,8 +97,15 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
     const Stage& stage = m_.stages[g];
     if (stage.kind != kind || stage.name != name || (after_load && !stage.also_after_load)) continue;
     auto call = [&](int k) {
-      for (const Kernel& kernel : kernels_)
-        if (kernel.position == std::make_pair(static_cast<int>(g), k)) linef("{}();", kernel.name);
+      for (const Kernel& kernel : kernels_) {
+        if (kernel.position != std::make_pair(static_cast<int>(g), k) || !kernel.sink.empty())
+          continue;
+        if (kernel.profiled >= 0)
+          linef("{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
+                kernel.profiled, kernel.name);
+        else
+          linef("{}();", kernel.name);
+      }
     };
     int next = 0;
     for (const Iterate& loop : stage.loops) {
@@ -112,7 +166,8 @@ void ModelEmitter::kernel(const Kernel& k) {
     return arrays[key] = locals.fresh(wanted);
   };
   std::set<std::pair<int, int>> needed = uses.arrays;
-  if (st.observable < 0) needed.insert({home, st.var});
+  // A variant of --profile reads its target only to add to it.
+  if (st.observable < 0 && (k.sink.empty() || st.op != AssignOp::Set)) needed.insert({home, st.var});
   if (uses.random) needed.insert({home, kId});
   for (const Accumulate* acc : uses.accumulations) {
     UsesDx dx;
@@ -150,27 +205,15 @@ void ModelEmitter::kernel(const Kernel& k) {
   const std::string i = names.labels[0];
 
   // The comment: the .part line (each effect's, for a statement they were
-  // merged into) and the decisions behind the kernel.
-  if (st.origins.empty()) {
-    linef("// {}", source_line(st.loc));
-    linef("//   {}", source_text(st.loc));
+  // merged into) and the decisions behind the kernel; a variant's, what it is.
+  if (!k.sink.empty()) {
+    std::vector<std::string> effects;
+    for (const Origin& o : st.origins) effects.push_back(o.effect);
+    linef("// --profile: {} with the terms of {} only, into {}, which nobody reads",
+          target_name(m_, st), fmt::join(effects, ", "), k.sink);
+  } else {
+    kernel_comment(k, uses);
   }
-  for (const Origin& o : st.origins) {
-    linef("// effect {}, {}", o.effect, source_line(o.loc));
-    linef("//   {}", source_text(o.loc));
-  }
-  for (const Accumulate* acc : uses.accumulations) {
-    comment(fmt::format("{}: {}", accumulation_heading(m_, st, *acc),
-                        facts_.neighbourhoods.at(acc->id).reason));
-    if (newton_pairs(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
-      comment((st.schedule.skin ? "  each pair once, from half Verlet lists: "
-                                : "  each pair once when the search can walk pairs: ") +
-              facts_.symmetry.at(acc->id).reason);
-    if (facts_.uniform_sums.at(acc->id).once)
-      comment("  " + facts_.uniform_sums.at(acc->id).reason);
-  }
-  if (st.solve_operator) comment(facts_.linear_operators.at(k.position).reason);
-  comment(k.alias->reason);
   linef("void {}() {{", k.name);
   kernel_constants(st, uses, names, locals);
 
@@ -189,7 +232,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
-    const bool written = key.first == home && key.second == st.var;
+    const bool written = key.first == home && key.second == st.var && k.sink.empty();
     linef("{}auto& {} = {};", written ? "" : "const ", name, array_access(key.first, key.second));
   }
   if (st.observable >= 0) {  // one value: its reductions, then the assignment
@@ -208,14 +251,14 @@ void ModelEmitter::kernel(const Kernel& k) {
     return;
   }
   std::string buffer;
-  if (k.alias->buffered) {
-    buffer = buffer_member(home, st.var);
+  if (!k.sink.empty() || k.alias->buffered) {
+    buffer = k.sink.empty() ? buffer_member(home, st.var) : k.sink;
     linef("{}.resize({});", buffer, count);
   }
   std::vector<const Loop*> per_particle;
   std::string pairs_once;  // names the run-time choice of a search's pair walk
   for (const Loop& l : loops) {
-    if (!l.once && l.kind == SearchFact::Kind::Neighbours)
+    if (!l.once && l.kind == SearchFact::Kind::Neighbours && k.sink.empty())
       linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->"
                                                : search_for(l.members.front()->id) + ".");
     if (l.once) {
@@ -245,7 +288,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   assignment(st, names, buffer);
   line("});");
   const std::string target_array = array_name(home, st.var);
-  if (!buffer.empty()) linef("{}.swap({});", target_array, buffer);
+  if (!buffer.empty() && k.sink.empty()) linef("{}.swap({});", target_array, buffer);
   if (st.var == kAlive) linef("{}.erase_dead();", set_member_[home]);
   // After the loop: other particles may read this set's mirrored variables in it.
   if (st.var == kPosition && Domain::any(m_.domain.reflect)) {
@@ -263,6 +306,32 @@ void ModelEmitter::kernel(const Kernel& k) {
   if (st.var == kPosition || st.var == kAlive) linef("++{};", epoch_[home]);
   line("}");
   line("");
+}
+
+// The comment above a kernel: the .part line (each effect's, for a
+// statement they were merged into) and the decisions behind it.
+void ModelEmitter::kernel_comment(const Kernel& k, const StatementUses& uses) {
+  const Statement& st = *k.st;
+  if (st.origins.empty()) {
+    linef("// {}", source_line(st.loc));
+    linef("//   {}", source_text(st.loc));
+  }
+  for (const Origin& o : st.origins) {
+    linef("// effect {}, {}", o.effect, source_line(o.loc));
+    linef("//   {}", source_text(o.loc));
+  }
+  for (const Accumulate* acc : uses.accumulations) {
+    comment(fmt::format("{}: {}", accumulation_heading(m_, st, *acc),
+                        facts_.neighbourhoods.at(acc->id).reason));
+    if (newton_pairs(st) && facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours)
+      comment((st.schedule.skin ? "  each pair once, from half Verlet lists: "
+                                : "  each pair once when the search can walk pairs: ") +
+              facts_.symmetry.at(acc->id).reason);
+    if (facts_.uniform_sums.at(acc->id).once)
+      comment("  " + facts_.uniform_sums.at(acc->id).reason);
+  }
+  if (st.solve_operator) comment(facts_.linear_operators.at(k.position).reason);
+  comment(k.alias->reason);
 }
 
 // The params and computed consts a kernel reads, as local constants named
@@ -292,13 +361,14 @@ void ModelEmitter::kernel_constants(const Statement& st, StatementUses uses, Exp
   }
 }
 
-std::string ModelEmitter::buffer_member(int s, int var) {
-  auto key = std::make_pair(s, var);
+std::string ModelEmitter::buffer_member(int s, int var, bool sink) {
+  auto key = std::make_tuple(s, var, sink);
   auto it = buffers_.find(key);
   if (it != buffers_.end()) return it->second.first;
   const ParticleSet& set = m_.sets[s];
   const std::string name =
-      members_.fresh((m_.sets.size() > 1 ? set.name + "_" : "") + set.vars[var].name + "_next_");
+      members_.fresh((sink ? "profile_sink_" : "") + (m_.sets.size() > 1 ? set.name + "_" : "") +
+                     set.vars[var].name + (sink ? "_" : "_next_"));
   // As the set stores the variable: a float one's buffer holds floats too.
   const Type type = set.vars[var].type;
   const std::string element =
@@ -349,6 +419,8 @@ void ModelEmitter::refresh_search(int group_index, const Statement& st,
                         fmt::join(group_lines(m_, group), ", "), group.reason));
   linef("const double {} = {};", local, radius);
   linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
+  if (options_.profile)
+    linef("const partc::ProfileTimer timer(profile_, profile_.search_slot({}));", group.search);
   linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
   if (plan.reorders)
     linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
@@ -436,6 +508,13 @@ void ModelEmitter::refresh_lists(const Statement& st, const std::string& local,
   linef("const double {} = {};", local, radius);
   linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1}{2});", lists, skin,
         half_lists(st) ? ", partc::VerletPairs::half" : "");
+  if (options_.profile) {
+    const auto served = lists_served();
+    const auto it = std::find_if(served.begin(), served.end(),
+                                 [&](const auto& entry) { return entry.first == lists; });
+    linef("const partc::ProfileTimer timer(profile_, profile_.search_slot({}));",
+          searches_.size() + static_cast<std::size_t>(it - served.begin()));
+  }
   linef("if ({}->update(domain_, {}, {})) ++{};  // rebuilt: {} may be reordered", lists, local,
         set_member_[st.set], epoch_[st.set], m_.sets[st.set].name);
 }

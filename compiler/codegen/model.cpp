@@ -231,6 +231,7 @@ void ModelEmitter::header() {
   if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) headers.push_back("faces.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
+  if (options_.profile) headers.push_back("profile.hpp");
   if (!m_.frames.empty()) headers.push_back("vtk.hpp");
   if (!solve_results_.empty())
     for (const char* h :
@@ -318,6 +319,7 @@ void ModelEmitter::public_api() {
   named_stages();
   for_each_set();
   search_report();
+  if (options_.profile) profile_api();
   boundary_report();
   solve_report();
   log();
@@ -431,6 +433,7 @@ void ModelEmitter::step() {
   line(m_.timestep ? "// One time step: every step block, in order; then t advances."
                    : "// One time step: every step block, in order.");
   line("void step() {");
+  if (options_.profile) line("const partc::ProfileTimer step_timer(profile_, profile_.step_slot());");
   stage_calls(StageKind::Step);
   if (m_.timestep)
     linef("t_ += {};  // {}", expression(m_.timestep, initialiser_names(0)),
@@ -486,6 +489,59 @@ void ModelEmitter::search_report() {
   }
   line("return report;");
   line("}");
+}
+
+// --profile: the profile, and the calibration the driver runs after the run.
+void ModelEmitter::profile_api() {
+  line("const partc::Profile& profile() const { return profile_; }");
+  line("// Times each kernel of several effects whole and without each effect's term, into");
+  line("// buffers nobody reads: the model's state stays as it is.");
+  line("void calibrate_profile([[maybe_unused]] int rounds) {");
+  for (const Calibration& c : calibrations_) {
+    std::vector<std::string> calls;
+    for (const std::string& v : c.variants) calls.push_back(fmt::format("[this] {{ {}(); }}", v));
+    linef("profile_.calibrate({}, rounds, {{{}}});", c.profiled, fmt::join(calls, ", "));
+  }
+  line("}");
+}
+
+// --profile: what each slot of the profile times, in the order of the slots.
+void ModelEmitter::profile_state() {
+  auto quoted = [](const std::vector<std::string>& names) {
+    std::vector<std::string> out;
+    for (const std::string& n : names) out.push_back("\"" + n + "\"");
+    return fmt::format("{{{}}}", fmt::join(out, ", "));
+  };
+  auto effects_of = [](const std::vector<const Statement*>& statements) {
+    std::vector<std::string> effects;
+    for (const Statement* st : statements) {
+      if (st->origins.empty()) effects.push_back("");
+      for (const Origin& o : st->origins)
+        if (std::find(effects.begin(), effects.end(), o.effect) == effects.end())
+          effects.push_back(o.effect);
+    }
+    return effects;
+  };
+  std::vector<std::string> kernels, searches;
+  for (const Kernel* k : profiled_) {
+    std::vector<std::string> effects;
+    for (const Origin& o : k->st->origins) effects.push_back(o.effect);
+    kernels.push_back(fmt::format("{{\"{}\", {}, \"line {}\"}}", k->name, quoted(effects),
+                                  file_.output_line(k->st->loc.begin)));
+  }
+  for (std::size_t k = 0; k < searches_.size(); ++k) {
+    std::vector<const Statement*> served;
+    for (const SearchGroup& group : facts_.searches.groups)
+      if (group.search == static_cast<int>(k))
+        for (const auto& [g, s] : group.statements) served.push_back(&m_.stages[g].statements[s]);
+    searches.push_back(fmt::format("{{\"{} of {}\", {}}}", searches_[k],
+                                   m_.sets[facts_.searches.searches[k].set].name,
+                                   quoted(effects_of(served))));
+  }
+  for (const auto& [lists, statements] : lists_served())
+    searches.push_back(fmt::format("{{\"{}\", {}}}", lists, quoted(effects_of(statements))));
+  linef("partc::Profile profile_{{{{{}}}, {{{}}}}};  // --profile: step kernels, then searches",
+        fmt::join(kernels, ", "), fmt::join(searches, ", "));
 }
 
 // How many particles of each set left through open faces (the driver's summary).
@@ -780,8 +836,11 @@ void ModelEmitter::state() {
     linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second,
           sums.first);
   for (const auto& [key, buffer] : buffers_)
-    linef("std::vector<{}> {};  // new values of {}, for buffered updates", buffer.second,
-          buffer.first, m_.sets[key.first].vars[key.second].name);
+    linef("std::vector<{}> {};  // new values of {}, {}", buffer.second, buffer.first,
+          m_.sets[std::get<0>(key)].vars[std::get<1>(key)].name,
+          std::get<2>(key) ? "for --profile's calibration (nobody reads them)"
+                           : "for buffered updates");
+  if (options_.profile) profile_state();
 }
 
 }  // namespace codegen

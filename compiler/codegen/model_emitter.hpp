@@ -5,10 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <deque>
 #include <map>
 #include <set>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -151,16 +153,30 @@ class ModelEmitter {
     const Statement* st;
     const AliasFact* alias;
     std::pair<int, int> position;  // (stage, statement)
+    // --profile: a calibration variant, which writes this member instead of
+    // its target and leaves the model's state as it was.
+    std::string sink;
+    int profiled = -1;  // --profile: a step kernel's index in partc::Profile
   };
+  // --profile: a kernel of several effects' terms, and its variants: whole,
+  // then without each effect's term (Profile::calibrate).
+  struct Calibration {
+    int profiled;
+    std::vector<std::string> variants;
+  };
+  void plan_calibration(const Kernel& k);
+  void profile_api();
+  void profile_state();
   void plan_kernels();
   // after_load: only the init stages that also end load().
   void stage_calls(StageKind kind, const std::string& name = "", bool after_load = false);
   void named_stages();
   void kernels();
   void kernel(const Kernel& k);
+  void kernel_comment(const Kernel& k, const StatementUses& uses);
   void kernel_constants(const Statement& st, StatementUses uses, ExpressionNames& names,
                         NameTable& locals);
-  std::string buffer_member(int s, int var);
+  std::string buffer_member(int s, int var, bool sink = false);
   void refresh_search(int group, const Statement& st, const ExpressionNames& names,
                       NameTable& locals);
   std::string radius_expression(const SearchFact& fact, const Statement& st,
@@ -222,8 +238,12 @@ class ModelEmitter {
   std::vector<std::pair<std::string, std::vector<const Statement*>>> lists_served() const;
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
+  std::deque<Statement> variants_;  // the statements of calibration variants
+  std::vector<Calibration> calibrations_;
+  std::vector<const Kernel*> profiled_;  // --profile: the step kernels, in order
   std::map<std::string, std::string> stage_methods_;  // named stage -> its method
-  std::map<std::pair<int, int>, std::pair<std::string, std::string>> buffers_;  // -> name, element
+  // (set, var, sink) -> name, element: a buffered update's, or a variant's sink
+  std::map<std::tuple<int, int, bool>, std::pair<std::string, std::string>> buffers_;
   std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
 };
 

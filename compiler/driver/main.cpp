@@ -34,6 +34,8 @@ const char* const kUsage =
     "\n"
     "  -o OUTPUT         write to OUTPUT (default: standard output)\n"
     "  --main            also emit main(): the command-line driver (see --help of the model)\n"
+    "  --profile         time each step per effect instance: the model's run ends with a\n"
+    "                    table of ms a step per effect and what --drop NAME would save\n"
     "  --emit=WHAT       ast: the syntax tree; ir: the typed IR; cpp: C++ (the default)\n"
     "  --explain         print, per statement, the search structure chosen for each\n"
     "                    accumulation and whether the update is buffered, and why; for a\n"
@@ -52,6 +54,7 @@ struct Options {
   std::string input;
   std::optional<std::string> output;
   bool driver_main = false;
+  bool profile = false;
   bool explain = false;
   bool explain_json = false;
   std::string emit = "cpp";
@@ -73,6 +76,8 @@ Options parse_options(int argc, char** argv) {
       o.output = argv[++k];
     } else if (arg == "--main") {
       o.driver_main = true;
+    } else if (arg == "--profile") {
+      o.profile = true;
     } else if (arg == "--depfile") {
       if (k + 1 >= argc) throw UsageError{"--depfile needs a file name"};
       o.depfile = argv[++k];
@@ -191,6 +196,7 @@ int main(int argc, char** argv) {
     if (options.explain && !options.output) return 0;
     partc::CodegenOptions codegen;
     codegen.driver_main = options.driver_main;
+    codegen.profile = options.profile;
     codegen.source_name = std::filesystem::path(options.input).filename().string();
     const std::string code = partc::generate_cpp(c.model, c.facts, *file, codegen);
     const std::string name = options.output ? *options.output : "model.cpp";

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "ir/constant.hpp"
+#include "ir/terms.hpp"
 #include "ir/visitor.hpp"
 
 namespace partc::ir {
@@ -45,40 +46,6 @@ bool zero(const Expr& e, const Model& model) {
   }
 }
 
-// One term of a contribution: its value and whether it is subtracted.
-struct Term {
-  Expr value;
-  bool minus;
-};
-
-// The n terms instantiation joined, t1 + t2 - t3 ... (left to right, the
-// first perhaps negated); one term when n is 1, whatever its shape.
-std::vector<Term> split(const Expr& value, std::size_t n) {
-  std::vector<Term> terms;
-  Expr rest = value;
-  for (; n > 1; --n) {
-    auto b = as<Binary>(rest);
-    terms.insert(terms.begin(), {b->rhs, b->op == BinaryOp::Sub});
-    rest = b->lhs;
-  }
-  if (rest->kind == ExprKind::Unary && as<Unary>(rest)->op == UnaryOp::Neg && !terms.empty())
-    terms.insert(terms.begin(), {as<Unary>(rest)->operand, true});
-  else
-    terms.insert(terms.begin(), {rest, false});
-  return terms;
-}
-
-Expr join(const std::vector<Term>& terms, Location loc) {
-  Expr out = terms.front().minus
-                 ? std::make_shared<Unary>(terms.front().value->type, UnaryOp::Neg,
-                                           terms.front().value, loc)
-                 : terms.front().value;
-  for (std::size_t k = 1; k < terms.size(); ++k)
-    out = std::make_shared<Binary>(out->type, terms[k].minus ? BinaryOp::Sub : BinaryOp::Add, out,
-                                   terms[k].value, loc);
-  return out;
-}
-
 Expr zero_of(Type type, int dim, Location loc) {
   if (type != Type::Vec) return std::make_shared<Literal>(type, 0, loc);
   return std::make_shared<MakeVec>(
@@ -113,7 +80,7 @@ std::vector<FoldedTerm> fold_zero_terms(Model& model) {
       // Instantiation joins the contributions of several effects, one per origin.
       const bool own = st.origins.empty();
       const std::size_t n = own ? 1 : st.origins.size();
-      const std::vector<Term> terms = split(st.value, n);
+      const std::vector<Term> terms = split_terms(st.value, n);
       std::vector<Term> live;
       std::vector<Origin> origins;
       for (std::size_t k = 0; k < terms.size(); ++k) {
@@ -136,7 +103,7 @@ std::vector<FoldedTerm> fold_zero_terms(Model& model) {
         if (st.op != AssignOp::Set) continue;  // adds nothing
         st.value = zero_of(st.value->type, model.dim, st.value->loc);  // still theirs
       } else {
-        st.value = join(live, st.value->loc);
+        st.value = join_terms(live, st.value->loc);
         st.origins = std::move(origins);
       }
       kept.push_back(std::move(st));

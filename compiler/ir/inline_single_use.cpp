@@ -185,6 +185,7 @@ class Inliner {
     fused.value = substitute.mutate(reader.value);
     fused.labels.insert(fused.labels.end(), writer.labels.begin() + 1, writer.labels.end());
     fused.origins = writer.origins;
+    fused.terms_by_origin = false;
     fused.origins.insert(fused.origins.end(), reader.origins.begin(), reader.origins.end());
     if (default_schedule(fused.schedule)) fused.schedule = writer.schedule;
     report_.inlined.push_back({m_.sets[s].name, var.name, writer.loc, reader.loc});

@@ -359,6 +359,9 @@ struct Origin {
 struct Statement {
   std::string name;  // empty unless named for the schedule
   std::vector<Origin> origins;  // empty unless instantiated from effects
+  // The value is the origins' terms joined, t1 + t2 - t3 (ir/terms.hpp): one
+  // per origin, as channel merging made it; not once fusion inlined a writer.
+  bool terms_by_origin = false;
   Schedule schedule;
   int set;
   int var;

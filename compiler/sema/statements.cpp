@@ -71,6 +71,7 @@ void Sema::check_block(const std::vector<ast::BlockStatement>& body, ir::Stage& 
       if (a)
         for (const ast::Origin& o : a->origins)
           stage.statements.back().origins.push_back({o.effect, o.loc});
+      if (a && a->origins.size() > 1) stage.statements.back().terms_by_origin = true;
       const boost::optional<ast::Identifier>& name = a ? a->name : solve->name;
       if (!name) return;
       const auto [it, fresh] = statement_names_.emplace(

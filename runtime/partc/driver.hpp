@@ -120,6 +120,12 @@ struct has_frames<Model, std::void_t<decltype(std::declval<const Model&>().frame
     : std::true_type {};
 
 template <class Model, class = void>
+struct has_profile : std::false_type {};
+template <class Model>
+struct has_profile<Model, std::void_t<decltype(std::declval<const Model&>().profile())>>
+    : std::true_type {};
+
+template <class Model, class = void>
 struct has_time : std::false_type {};
 template <class Model>
 struct has_time<Model, std::void_t<decltype(std::declval<const Model&>().time())>>
@@ -433,6 +439,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
   std::int64_t clean = -1;  // the last step found finite
+  std::chrono::duration<double> stepping{0};  // in step(), for --profile's check
   LastFinite kept(model);
   const auto check = [&](std::int64_t step) {
     try {
@@ -449,7 +456,11 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   };
   try {
     for (std::int64_t k = 0; k <= options.steps; ++k) {
-      if (k > 0) model.step();
+      if (k > 0) {
+        const auto before = std::chrono::steady_clock::now();
+        model.step();
+        stepping += std::chrono::steady_clock::now() - before;
+      }
       const std::int64_t step = model.step_count();
       bool frame = false;
       model.for_each_set([&](const char* name, const auto&) {
@@ -482,6 +493,15 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     });
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   if (!options.quiet) print_summary(out, model, options, elapsed.count());
+  // After the output and the summary: the calibration runs kernels again.
+  if constexpr (has_profile<Model>::value) {
+    if (options.quiet) return;
+    model.calibrate_profile(9);
+    model.profile().report(out, options.steps);
+    out << "  the driver's clock around step(): "
+        << (options.steps > 0 ? 1e3 * stepping.count() / static_cast<double>(options.steps) : 0)
+        << " ms a step\n";
+  }
 }
 
 }  // namespace detail

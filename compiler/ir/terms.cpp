@@ -1,0 +1,33 @@
+#include "ir/terms.hpp"
+
+#include <memory>
+
+namespace partc::ir {
+
+std::vector<Term> split_terms(const Expr& value, std::size_t n) {
+  std::vector<Term> terms;
+  Expr rest = value;
+  for (; n > 1; --n) {
+    auto b = as<Binary>(rest);
+    terms.insert(terms.begin(), {b->rhs, b->op == BinaryOp::Sub});
+    rest = b->lhs;
+  }
+  if (rest->kind == ExprKind::Unary && as<Unary>(rest)->op == UnaryOp::Neg && !terms.empty())
+    terms.insert(terms.begin(), {as<Unary>(rest)->operand, true});
+  else
+    terms.insert(terms.begin(), {rest, false});
+  return terms;
+}
+
+Expr join_terms(const std::vector<Term>& terms, Location loc) {
+  Expr out = terms.front().minus
+                 ? std::make_shared<Unary>(terms.front().value->type, UnaryOp::Neg,
+                                           terms.front().value, loc)
+                 : terms.front().value;
+  for (std::size_t k = 1; k < terms.size(); ++k)
+    out = std::make_shared<Binary>(out->type, terms[k].minus ? BinaryOp::Sub : BinaryOp::Add, out,
+                                   terms[k].value, loc);
+  return out;
+}
+
+}  // namespace partc::ir

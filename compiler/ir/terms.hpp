@@ -1,0 +1,26 @@
+// The terms of a statement that channel merging joined, one per effect
+// instance (Statement::terms_by_origin): fold_zero_terms removes the terms a
+// constant 0 cancels, and --profile times the statement without each one.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "ir/ir.hpp"
+
+namespace partc::ir {
+
+// One term of a contribution: its value and whether it is subtracted.
+struct Term {
+  Expr value;
+  bool minus;
+};
+
+// The n terms instantiation joined, t1 + t2 - t3 ... (left to right, the
+// first perhaps negated); one term when n is 1, whatever its shape.
+std::vector<Term> split_terms(const Expr& value, std::size_t n);
+
+// The terms joined again, as instantiation joins them.
+Expr join_terms(const std::vector<Term>& terms, Location loc);
+
+}  // namespace partc::ir

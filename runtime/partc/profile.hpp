@@ -1,0 +1,254 @@
+// partc/profile.hpp: where a generated model's step time goes, per effect
+// instance, for models compiled with `partc --profile`.
+//
+//   partc::Profile profile({{"step_f", {"lj", "coulomb"}}, {"step_v", {"verlet"}}},
+//                          {{"sums over A", {"lj", "coulomb"}}});
+//   { const partc::ProfileTimer t(profile, profile.step_slot()); ...
+//     { const partc::ProfileTimer k(profile, profile.kernel_slot(0)); step_f(); } ... }
+//   profile.calibrate(0, 5, {full, without_lj, without_coulomb});  // after the run
+//   profile.report(std::cout, steps);
+//
+// Surprises:
+// - Times are exclusive: a timer's time is taken off the timer open around
+//   it, so a search built inside a kernel counts for the search, not for the
+//   kernel that happened to need it first. Every slot together is step()'s
+//   time, exactly; nothing is counted twice.
+// - A kernel of several effects (their contributions merged into one
+//   statement, one pair walk) is split by a calibration after the run: the
+//   statement computed whole, then without each effect's term in turn, into
+//   a buffer nobody reads. Effect o's marginal cost is m_o = full - without_o;
+//   its share of the kernel's time T is T m_o / sum(m) (the shared walk split
+//   in proportion), and what dropping it would save is T m_o / full.
+// - A kernel of several effects that is not calibrated (a variable computed
+//   where it is read) is shown as their joint row: no split is claimed.
+// - A search's builds count towards an effect's saving only when that effect
+//   alone uses the search; otherwise they are a shared row.
+// - Timers are opened on the thread that calls step(), never inside a
+//   parallel loop: the profile holds no locks and no global state.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace partc {
+
+// One step kernel: its name and the effect instances its terms come from
+// (none: a statement the scene or model wrote itself, named by where).
+struct ProfiledKernel {
+  std::string name;
+  std::vector<std::string> effects;
+  std::string where;  // "line 12": for statements of no effect
+};
+
+// One search or set of Verlet lists: what it serves, and the effects of the
+// statements it serves ("" for a statement of no effect).
+struct ProfiledSearch {
+  std::string serves;
+  std::vector<std::string> effects;
+};
+
+// An effect's (or a joint row's) time per step and what dropping it saves.
+struct EffectTime {
+  std::string name;
+  double seconds = 0;     // over the run
+  double saving = 0;      // predicted, over the run
+  bool effect = false;    // an effect instance's row (or several's, joint)
+  bool predicted = true;  // false: a joint row, its saving unknown
+};
+
+class Profile {
+ public:
+  static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+
+  Profile(std::vector<ProfiledKernel> kernels, std::vector<ProfiledSearch> searches)
+      : kernels_(std::move(kernels)),
+        searches_(std::move(searches)),
+        seconds_(1 + kernels_.size() + searches_.size(), 0.0),
+        calibration_(kernels_.size()) {}
+
+  std::size_t step_slot() const { return 0; }
+  std::size_t kernel_slot(std::size_t k) const { return 1 + k; }
+  std::size_t search_slot(std::size_t s) const { return 1 + kernels_.size() + s; }
+
+  // Adds seconds to a slot (a timer's time; tests give times directly).
+  void add(std::size_t slot, double seconds) { seconds_.at(slot) += seconds; }
+
+  // Exclusive seconds of a slot so far.
+  double seconds(std::size_t slot) const { return seconds_.at(slot); }
+  // step()'s time: every slot together.
+  double step_seconds() const {
+    double total = 0;
+    for (double s : seconds_) total += s;
+    return total;
+  }
+
+  // Times each variant `rounds` times, interleaved so that a loaded machine
+  // slows them alike: variants[0] computes the kernel's statement whole,
+  // variants[1 + o] without effect o's term. Each timing repeats a variant
+  // for at least min_seconds (a clock tick is not a cost); keeps the medians
+  // per call.
+  void calibrate(std::size_t kernel, int rounds, const std::vector<std::function<void()>>& variants,
+                 double min_seconds = 5e-3) {
+    if (variants.size() != kernels_.at(kernel).effects.size() + 1)
+      throw std::invalid_argument("Profile::calibrate: one variant per effect, and the whole");
+    const std::vector<double> step = seconds_;
+    auto time = [](const std::function<void()>& f, int calls) {
+      const auto start = std::chrono::steady_clock::now();
+      for (int c = 0; c < calls; ++c) f();
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    const double once = std::max(time(variants.front(), 1), 1e-9);
+    const int calls = static_cast<int>(std::clamp(std::ceil(min_seconds / once), 1.0, 1e6));
+    std::vector<std::vector<double>> times(variants.size());
+    for (int r = 0; r < rounds; ++r)
+      for (std::size_t v = 0; v < variants.size(); ++v)
+        times[v].push_back(time(variants[v], calls) / calls);
+    std::vector<double> medians;
+    for (std::vector<double>& t : times) medians.push_back(median(t));
+    set_calibration(kernel, medians);
+    seconds_ = step;  // a variant's search checks are not the step's
+  }
+
+  // As calibrate measured: [0] the whole statement, [1 + o] without effect o.
+  void set_calibration(std::size_t kernel, std::vector<double> seconds) {
+    calibration_.at(kernel) = std::move(seconds);
+  }
+
+  // Per effect instance, then the scene's own statements, shared searches
+  // and step() outside kernels: the rows sum to step_seconds().
+  std::vector<EffectTime> attribute() const {
+    std::vector<EffectTime> rows;
+    auto row = [&](const std::string& name, bool effect = true) -> EffectTime& {
+      for (EffectTime& r : rows)
+        if (r.name == name) return r;
+      rows.push_back({name});
+      rows.back().effect = effect;
+      return rows.back();
+    };
+    for (std::size_t k = 0; k < kernels_.size(); ++k) {
+      const ProfiledKernel& kernel = kernels_[k];
+      const double t = seconds_[kernel_slot(k)];
+      if (kernel.effects.empty()) {
+        row("scene, " + kernel.where, false).seconds += t;
+      } else if (kernel.effects.size() == 1) {
+        EffectTime& r = row(kernel.effects.front());
+        r.seconds += t;
+        r.saving += t;
+      } else if (calibration_[k].empty()) {
+        std::string joint = kernel.effects.front();
+        for (std::size_t o = 1; o < kernel.effects.size(); ++o) joint += "+" + kernel.effects[o];
+        EffectTime& r = row(joint);
+        r.seconds += t;
+        r.predicted = false;
+      } else {
+        const std::vector<double>& c = calibration_[k];
+        std::vector<double> marginal;
+        double total = 0;
+        for (std::size_t o = 0; o < kernel.effects.size(); ++o) {
+          marginal.push_back(std::max(0.0, c[0] - c[1 + o]));
+          total += marginal.back();
+        }
+        const double n = static_cast<double>(marginal.size());
+        for (std::size_t o = 0; o < kernel.effects.size(); ++o) {
+          EffectTime& r = row(kernel.effects[o]);
+          r.seconds += total > 0 ? t * marginal[o] / total : t / n;
+          if (c[0] > 0) r.saving += t * marginal[o] / c[0];
+        }
+      }
+    }
+    for (std::size_t s = 0; s < searches_.size(); ++s) {
+      const ProfiledSearch& search = searches_[s];
+      const double t = seconds_[search_slot(s)];
+      const bool alone = !search.effects.empty() && !search.effects.front().empty() &&
+                         std::all_of(search.effects.begin(), search.effects.end(),
+                                     [&](const std::string& e) { return e == search.effects[0]; });
+      EffectTime& r = row(alone ? search.effects.front() : "search: " + search.serves, alone);
+      r.seconds += t;
+      if (alone) r.saving += t;
+    }
+    row("step() outside kernels", false).seconds += seconds_[step_slot()];
+    return rows;
+  }
+
+  // The table: per row, ms a step, its share of the step, and the predicted
+  // saving of dropping it (--drop NAME), effects only.
+  void report(std::ostream& out, std::int64_t steps) const {
+    const double total = step_seconds();
+    const double per = steps > 0 ? 1e3 / static_cast<double>(steps) : 0;
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(4);
+    text << "profile: " << steps << " steps, " << total * per << " ms a step in step()\n";
+    text << "  " << std::left << std::setw(36) << "effect" << std::right << std::setw(12)
+         << "ms/step" << std::setw(8) << "share" << std::setw(26) << "--drop saves (ms/step)"
+         << "\n";
+    for (const EffectTime& r : attribute()) {
+      text << "  " << std::left << std::setw(36) << r.name << std::right << std::setw(12)
+           << r.seconds * per << std::setw(7) << std::setprecision(1)
+           << (total > 0 ? 100 * r.seconds / total : 0) << "%" << std::setprecision(4);
+      if (r.effect && !r.predicted)
+        text << std::setw(26) << "joint: not split";
+      else if (r.effect)
+        text << std::setw(26) << r.saving * per;
+      text << "\n";
+    }
+    out << text.str();
+  }
+
+ private:
+  friend class ProfileTimer;
+
+  static double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+  }
+
+  std::vector<ProfiledKernel> kernels_;
+  std::vector<ProfiledSearch> searches_;
+  std::vector<double> seconds_;  // exclusive, per slot
+  std::vector<std::vector<double>> calibration_;
+  std::size_t open_ = none;  // the slot whose timer is running, innermost
+};
+
+// Times a scope into one slot of a profile, exclusive of the timers opened
+// inside it; outside step() (a search built by init), nothing.
+class ProfileTimer {
+ public:
+  ProfileTimer(Profile& profile, std::size_t slot)
+      : profile_(profile), slot_(slot), parent_(profile.open_),
+        counts_(slot == profile.step_slot() || parent_ != Profile::none),
+        start_(std::chrono::steady_clock::now()) {
+    profile_.open_ = slot_;
+  }
+  ~ProfileTimer() {
+    profile_.open_ = parent_;
+    if (!counts_) return;
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    profile_.add(slot_, s);
+    if (parent_ != Profile::none) profile_.add(parent_, -s);
+  }
+  ProfileTimer(const ProfileTimer&) = delete;
+  ProfileTimer& operator=(const ProfileTimer&) = delete;
+
+ private:
+  Profile& profile_;
+  std::size_t slot_, parent_;
+  bool counts_;  // only in a step: a search built by init is not the step's
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace partc

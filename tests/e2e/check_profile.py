@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""A model built with partc --profile against the same model built without.
+
+usage: check_profile.py PLAIN PROFILED WORKDIR EFFECT...
+
+Both run 50 steps on one thread. Their --output files must be identical
+byte for byte (the timers and the calibration change no value), and the
+profile's table must have a row per EFFECT with a predicted --drop saving,
+rows that sum to the step time it states, and that time within 5% of the
+driver's own clock around step()."""
+import os
+import re
+import subprocess
+import sys
+
+plain, profiled, work = sys.argv[1:4]
+effects = sys.argv[4:]
+os.makedirs(work, exist_ok=True)
+env = dict(os.environ, OMP_NUM_THREADS="1")
+
+
+def run(binary, name):
+    out = os.path.join(work, name + ".csv")
+    r = subprocess.run([binary, "--steps", "50", "--output", out], env=env, capture_output=True,
+                       text=True, check=True)
+    return out, r.stdout
+
+
+plain_csv, _ = run(plain, "plain")
+profiled_csv, text = run(profiled, "profiled")
+failures = []
+if open(plain_csv, "rb").read() != open(profiled_csv, "rb").read():
+    failures.append("--output differs between the plain and the profiled build")
+
+lines = text.splitlines()
+start = next((k for k, l in enumerate(lines) if l.startswith("profile: ")), None)
+if start is None:
+    sys.exit("no profile table in the output:\n" + text)
+step_ms = float(re.search(r"([0-9.]+) ms a step in step\(\)", lines[start]).group(1))
+rows = {}
+for line in lines[start + 2:]:
+    m = re.match(r"  (.+?)\s+([0-9.]+)\s+([0-9.]+)%(?:\s+(\S.*))?$", line)
+    if not m:
+        break
+    rows[m.group(1)] = (float(m.group(2)), m.group(4))
+clock = float(re.search(r"the driver's clock around step\(\): ([0-9.e+-]+) ms", text).group(1))
+
+total = sum(ms for ms, _ in rows.values())
+if abs(total - step_ms) > 0.05 * step_ms:
+    failures.append(f"rows sum to {total} ms a step, the table says {step_ms}")
+if abs(step_ms - clock) > 0.05 * clock:
+    failures.append(f"the profile's step time {step_ms} ms is not within 5% of the driver's {clock}")
+for e in effects:
+    if e not in rows:
+        failures.append(f"no row for effect {e}")
+    elif rows[e][1] is None or not re.match(r"[0-9.]+$", rows[e][1]):
+        failures.append(f"effect {e} has no predicted --drop saving: {rows[e][1]}")
+
+print("\n".join(lines[start:]))
+if failures:
+    sys.exit("\n".join(failures))
+print(f"ok: output identical; {len(rows)} rows sum to {total:.4f} of {step_ms:.4f} ms "
+      f"(driver {clock:.4f} ms)")
