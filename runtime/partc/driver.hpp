@@ -439,7 +439,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
   std::int64_t clean = -1;  // the last step found finite
-  std::chrono::duration<double> stepping{0};  // in step(), for --profile's check
+  [[maybe_unused]] std::chrono::duration<double> stepping{0};  // in step(), for --profile
   LastFinite kept(model);
   const auto check = [&](std::int64_t step) {
     try {
@@ -457,9 +457,13 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   try {
     for (std::int64_t k = 0; k <= options.steps; ++k) {
       if (k > 0) {
-        const auto before = std::chrono::steady_clock::now();
-        model.step();
-        stepping += std::chrono::steady_clock::now() - before;
+        if constexpr (has_profile<Model>::value) {
+          const auto before = std::chrono::steady_clock::now();
+          model.step();
+          stepping += std::chrono::steady_clock::now() - before;
+        } else {
+          model.step();
+        }
       }
       const std::int64_t step = model.step_count();
       bool frame = false;
