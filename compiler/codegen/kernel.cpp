@@ -58,25 +58,27 @@ void ModelEmitter::plan_kernels() {
 // its time by their marginal costs). Not for statements that move or remove
 // particles, observables, solves, or a statement whose variant would walk
 // pairs otherwise than it does (a term that breaks symmetry, dropped).
-void ModelEmitter::plan_calibration(const Kernel& k) {
+void ModelEmitter::plan_calibration(const Kernel k) {
   const Statement& st = *k.st;
   if (!st.terms_by_origin || st.origins.size() < 2 || st.observable >= 0 || st.solve_operator ||
       st.var == kPosition || st.var == kAlive)
     return;
   const std::vector<Term> terms = split_terms(st.value, st.origins.size());
+  std::vector<Statement> statements{st};
+  for (std::size_t o = 0; o < st.origins.size(); ++o) {
+    Statement variant = st;
+    std::vector<Term> rest = terms;
+    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o));
+    variant.value = join_terms(rest, st.value->loc);
+    variant.origins.erase(variant.origins.begin() + static_cast<std::ptrdiff_t>(o));
+    if (newton_pairs(variant) != newton_pairs(st)) return;
+    statements.push_back(std::move(variant));
+  }
   Calibration calibration{k.profiled, {}};
   const std::string sink = buffer_member(st.set, st.var, true);
   std::vector<Kernel> variants;
-  for (std::size_t o = 0; o <= st.origins.size(); ++o) {
-    Statement variant = st;
-    if (o > 0) {
-      std::vector<Term> rest = terms;
-      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o - 1));
-      variant.value = join_terms(rest, st.value->loc);
-      variant.origins.erase(variant.origins.begin() + static_cast<std::ptrdiff_t>(o - 1));
-      if (newton_pairs(variant) != newton_pairs(st)) return;
-    }
-    variants_.push_back(std::move(variant));
+  for (std::size_t o = 0; o < statements.size(); ++o) {
+    variants_.push_back(std::move(statements[o]));
     const Statement* v = &variants_.back();
     if (lists_.count(&st)) lists_[v] = lists_.at(&st);
     const std::string name = members_.fresh(

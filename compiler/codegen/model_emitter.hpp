@@ -164,7 +164,7 @@ class ModelEmitter {
     int profiled;
     std::vector<std::string> variants;
   };
-  void plan_calibration(const Kernel& k);
+  void plan_calibration(const Kernel k);  // a copy: kernels_ grows
   void profile_api();
   void profile_state();
   void plan_kernels();
