@@ -7,6 +7,7 @@
 #include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
 #include "analysis/search_plan.hpp"
+#include "analysis/statement_fusion.hpp"
 #include "analysis/symmetry.hpp"
 #include "analysis/uniform_sums.hpp"
 #include "ir/ir.hpp"
@@ -28,6 +29,7 @@ struct ModelFacts {
   UniformSumReport uniform_sums;
   LinearOperatorReport linear_operators;
   SearchPlan searches;
+  StatementFusion fusion;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

@@ -1,5 +1,6 @@
-// Emits the kernels of a model's class: one private function per statement,
-// one pass over its particle set. Before the pass, the searches and Verlet
+// Emits the kernels of a model's class: one private function per statement
+// (or per fused pass of several, analysis/statement_fusion.cpp), one pass
+// over its particle set. Before the pass, the searches and Verlet
 // lists it needs are brought up to date (a rebuild may reorder the set) and
 // sums that obey Newton's third law walk each pair once; in the pass, each
 // particle sums its partners (or reads the pair walk's totals) and updates
@@ -16,6 +17,7 @@
 
 #include "codegen/model_emitter.hpp"
 #include "ir/constant.hpp"
+#include "ir/relabel.hpp"
 #include "ir/terms.hpp"
 #include "support/diagnostics.hpp"
 
@@ -27,17 +29,50 @@ void ModelEmitter::plan_kernels() {
     const Stage& stage = m_.stages[g];
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {
       const Statement& st = stage.statements[k];
+      const std::pair<int, int> position{static_cast<int>(g), static_cast<int>(k)};
+      const auto pass = facts_.fusion.pass_of.find(position);
+      if (pass != facts_.fusion.pass_of.end() &&
+          facts_.fusion.passes[pass->second].statements.front() != position)
+        continue;  // a later member of a fused pass: computed in its first member's kernel
       const std::string stage_name = stage.kind == StageKind::Init   ? "init"
                                      : stage.kind == StageKind::Step ? "step"
                                                                      : stage.name;
-      const std::string target = st.observable >= 0
-                                     ? m_.observables[st.observable].name
-                                     : (m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "") +
-                                           m_.sets[st.set].vars[st.var].name;
-      kernels_.push_back({members_.fresh(stage_name + "_" + target),
-                          &st,
-                          &facts_.aliasing[g][k],
-                          {static_cast<int>(g), static_cast<int>(k)}});
+      auto target = [&](const Statement& s) {
+        return s.observable >= 0 ? m_.observables[s.observable].name
+                                 : (m_.sets.size() > 1 ? m_.sets[s.set].name + "_" : "") +
+                                       m_.sets[s.set].vars[s.var].name;
+      };
+      if (pass == facts_.fusion.pass_of.end()) {
+        kernels_.push_back({members_.fresh(stage_name + "_" + target(st)), &st,
+                            &facts_.aliasing[g][k], position});
+        continue;
+      }
+      // One label table for the pass: the first member's, then each later's.
+      Statement lead = st;
+      std::vector<Statement> members;
+      std::string name = stage_name + "_" + target(st);
+      for (std::size_t n = 1; n < facts_.fusion.passes[pass->second].statements.size(); ++n) {
+        const auto [mg, mk] = facts_.fusion.passes[pass->second].statements[n];
+        Statement member = m_.stages[mg].statements[mk];
+        member.value = append_labels(member.value, static_cast<int>(lead.labels.size()));
+        lead.labels.insert(lead.labels.end(), member.labels.begin() + 1, member.labels.end());
+        members.push_back(std::move(member));
+        name += "_" + target(members.back());
+      }
+      Kernel kernel{members_.fresh(name), nullptr, &facts_.aliasing[g][k], position};
+      kernel.pass = pass->second;
+      for (std::size_t n = 0; n < members.size(); ++n) {
+        members[n].labels = lead.labels;
+        variants_.push_back(std::move(members[n]));
+        const auto [mg, mk] = facts_.fusion.passes[pass->second].statements[n + 1];
+        if (lists_.count(&m_.stages[mg].statements[mk]))
+          lists_[&variants_.back()] = lists_.at(&m_.stages[mg].statements[mk]);
+        kernel.fused.push_back({&variants_.back(), &facts_.aliasing[mg][mk]});
+      }
+      variants_.push_back(std::move(lead));
+      if (lists_.count(&st)) lists_[&variants_.back()] = lists_.at(&st);
+      kernel.st = &variants_.back();
+      kernels_.push_back(std::move(kernel));
     }
   }
   if (!options_.profile) return;
@@ -53,37 +88,45 @@ void ModelEmitter::plan_kernels() {
     if (k.profiled >= 0) profiled_.push_back(&k);
 }
 
-// A statement of several effects' terms, each a sum of its own or not, is
-// timed whole and without each term after the run (partc::Profile splits
-// its time by their marginal costs). Not for statements that move or remove
-// particles, observables, solves, or a statement whose variant would walk
-// pairs otherwise than it does (a term that breaks symmetry, dropped).
+// A statement of several effects' terms (merged, or fused from several
+// statements) is timed whole and without some of its origins' terms after the
+// run (partc::Profile splits its time by their marginal costs). Not for
+// observables or solves, or a statement whose variant would walk its pairs
+// otherwise than it does (a term that breaks symmetry, dropped): the variant
+// would time another walk.
 void ModelEmitter::plan_calibration(const Kernel k) {
   const Statement& st = *k.st;
-  if (!st.terms_by_origin || st.origins.size() < 2 || st.observable >= 0 || st.solve_operator ||
-      st.var == kPosition || st.var == kAlive)
-    return;
-  const std::vector<Term> terms = split_terms(st.value, st.origins.size());
+  // A fused pass's variants would have to leave out whole members: not yet.
+  if (k.pass >= 0 || st.origins.size() < 2 || st.observable >= 0 || st.solve_operator) return;
+  const std::vector<Statement::Without> parts = parts_without(st);
+  if (parts.empty()) return;
   std::vector<Statement> statements{st};
-  for (std::size_t o = 0; o < st.origins.size(); ++o) {
+  for (const Statement::Without& part : parts) {
     Statement variant = st;
-    std::vector<Term> rest = terms;
-    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o));
-    variant.value = join_terms(rest, st.value->loc);
-    variant.origins.erase(variant.origins.begin() + static_cast<std::ptrdiff_t>(o));
-    if (newton_pairs(variant) != newton_pairs(st)) return;
+    variant.value = part.value;
+    variant.without.clear();
+    variant.origins.clear();
+    for (std::size_t o = 0; o < st.origins.size(); ++o)
+      if (std::find(part.origins.begin(), part.origins.end(), o) == part.origins.end())
+        variant.origins.push_back(st.origins[o]);
+    if (walks_pairs(variant) && newton_pairs(variant) != newton_pairs(st)) return;
     statements.push_back(std::move(variant));
   }
-  Calibration calibration{k.profiled, {}};
+  Calibration calibration{k.profiled, {}, {}};
   const std::string sink = buffer_member(st.set, st.var, true);
   std::vector<Kernel> variants;
-  for (std::size_t o = 0; o < statements.size(); ++o) {
-    variants_.push_back(std::move(statements[o]));
-    const Statement* v = &variants_.back();
-    if (lists_.count(&st)) lists_[v] = lists_.at(&st);
-    const std::string name = members_.fresh(
-        k.name + (o == 0 ? "_whole" : "_without_" + cpp_name(st.origins[o - 1].effect)));
-    variants.push_back({name, v, k.alias, k.position, sink});
+  for (std::size_t v = 0; v < statements.size(); ++v) {
+    variants_.push_back(std::move(statements[v]));
+    const Statement* variant = &variants_.back();
+    if (lists_.count(&st)) lists_[variant] = lists_.at(&st);
+    std::string suffix = "_whole";
+    if (v > 0) {
+      suffix = "_without";
+      for (std::size_t o : parts[v - 1].origins) suffix += "_" + cpp_name(st.origins[o].effect);
+      calibration.leaves_out.push_back(parts[v - 1].origins);
+    }
+    const std::string name = members_.fresh(k.name + suffix);
+    variants.push_back({name, variant, k.alias, k.position, sink});
     calibration.variants.push_back(name);
   }
   kernels_.insert(kernels_.end(), variants.begin(), variants.end());
@@ -144,11 +187,15 @@ void ModelEmitter::kernels() {
 }
 
 void ModelEmitter::kernel(const Kernel& k) {
-  const Statement& st = *k.st;
+  const Statement& st = *k.st;  // a fused pass's first member, with every member's labels
   const int home = st.set;
+  std::vector<std::pair<const Statement*, const AliasFact*>> members{{&st, k.alias}};
+  members.insert(members.end(), k.fused.begin(), k.fused.end());
   StatementUses uses;
-  uses.visit(st.value);
-  uses.visit(st.solve_operator);
+  for (const auto& [member, alias] : members) {
+    uses.visit(member->value);
+    uses.visit(member->solve_operator);
+  }
 
   // Names local to this kernel: the model's own, then ours.
   NameTable locals;
@@ -169,7 +216,9 @@ void ModelEmitter::kernel(const Kernel& k) {
   };
   std::set<std::pair<int, int>> needed = uses.arrays;
   // A variant of --profile reads its target only to add to it.
-  if (st.observable < 0 && (k.sink.empty() || st.op != AssignOp::Set)) needed.insert({home, st.var});
+  for (const auto& [member, alias] : members)
+    if (member->observable < 0 && (k.sink.empty() || member->op != AssignOp::Set))
+      needed.insert({home, member->var});
   if (uses.random) needed.insert({home, kId});
   for (const Accumulate* acc : uses.accumulations) {
     UsesDx dx;
@@ -234,7 +283,11 @@ void ModelEmitter::kernel(const Kernel& k) {
   for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
-    const bool written = key.first == home && key.second == st.var && k.sink.empty();
+    const bool written =
+        key.first == home && k.sink.empty() &&
+        std::any_of(members.begin(), members.end(), [&](const auto& m) {
+          return m.first->observable < 0 && m.first->var == key.second;
+        });
     linef("{}auto& {} = {};", written ? "" : "const ", name, array_access(key.first, key.second));
   }
   if (st.observable >= 0) {  // one value: its reductions, then the assignment
@@ -252,10 +305,12 @@ void ModelEmitter::kernel(const Kernel& k) {
     line("");
     return;
   }
-  std::string buffer;
-  if (!k.sink.empty() || k.alias->buffered) {
-    buffer = k.sink.empty() ? buffer_member(home, st.var) : k.sink;
-    linef("{}.resize({});", buffer, count);
+  std::vector<std::string> buffers;  // per member: its buffer, or "" (in place)
+  for (const auto& [member, alias] : members) {
+    buffers.emplace_back();
+    if (k.sink.empty() && !alias->buffered) continue;
+    buffers.back() = k.sink.empty() ? buffer_member(home, member->var) : k.sink;
+    linef("{}.resize({});", buffers.back(), count);
   }
   std::vector<const Loop*> per_particle;
   std::string pairs_once;  // names the run-time choice of a search's pair walk
@@ -287,10 +342,16 @@ void ModelEmitter::kernel(const Kernel& k) {
         per_particle.empty() ? "light" : "heavy", i);
   for (const Loop* l : per_particle)
     loop(*l, st, names, l->kind == SearchFact::Kind::Neighbours ? pairs_once : "");
-  assignment(st, names, buffer);
+  for (std::size_t m = 0; m < members.size(); ++m) assignment(*members[m].first, names, buffers[m]);
   line("});");
-  const std::string target_array = array_name(home, st.var);
-  if (!buffer.empty() && k.sink.empty()) linef("{}.swap({});", target_array, buffer);
+  if (!k.sink.empty()) {  // a variant moves and removes nothing
+    line("}");
+    line("");
+    return;
+  }
+  for (std::size_t m = 0; m < members.size(); ++m)
+    if (!buffers[m].empty())
+      linef("{}.swap({});", array_name(home, members[m].first->var), buffers[m]);
   if (st.var == kAlive) linef("{}.erase_dead();", set_member_[home]);
   // After the loop: other particles may read this set's mirrored variables in it.
   if (st.var == kPosition && Domain::any(m_.domain.reflect)) {
@@ -314,14 +375,19 @@ void ModelEmitter::kernel(const Kernel& k) {
 // statement they were merged into) and the decisions behind it.
 void ModelEmitter::kernel_comment(const Kernel& k, const StatementUses& uses) {
   const Statement& st = *k.st;
-  if (st.origins.empty()) {
-    linef("// {}", source_line(st.loc));
-    linef("//   {}", source_text(st.loc));
+  std::vector<std::pair<const Statement*, const AliasFact*>> members{{&st, k.alias}};
+  members.insert(members.end(), k.fused.begin(), k.fused.end());
+  for (const auto& [member, alias] : members) {
+    if (member->origins.empty()) {
+      linef("// {}", source_line(member->loc));
+      linef("//   {}", source_text(member->loc));
+    }
+    for (const Origin& o : member->origins) {
+      linef("// effect {}, {}", o.effect, source_line(o.loc));
+      linef("//   {}", source_text(o.loc));
+    }
   }
-  for (const Origin& o : st.origins) {
-    linef("// effect {}, {}", o.effect, source_line(o.loc));
-    linef("//   {}", source_text(o.loc));
-  }
+  if (k.pass >= 0) comment("fused pass: " + facts_.fusion.passes[k.pass].reason);
   for (const Accumulate* acc : uses.accumulations) {
     comment(fmt::format("{}: {}", accumulation_heading(m_, st, *acc),
                         facts_.neighbourhoods.at(acc->id).reason));
@@ -333,7 +399,8 @@ void ModelEmitter::kernel_comment(const Kernel& k, const StatementUses& uses) {
       comment("  " + facts_.uniform_sums.at(acc->id).reason);
   }
   if (st.solve_operator) comment(facts_.linear_operators.at(k.position).reason);
-  comment(k.alias->reason);
+  for (const auto& [member, alias] : members)
+    comment((members.size() > 1 ? target_name(m_, *member) + ": " : "") + alias->reason);
 }
 
 // The params and computed consts a kernel reads, as local constants named
@@ -466,6 +533,15 @@ std::string ModelEmitter::radius_expression(const SearchFact& fact, const Statem
                                 set_member_[set], expression(term, over_k)));
   }
   return fmt::format("std::max({}, std::numeric_limits<double>::min())", fmt::join(parts, " + "));
+}
+
+// Whether any of the statement's sums is over neighbours: a pair walk.
+bool ModelEmitter::walks_pairs(const Statement& st) const {
+  StatementUses uses;
+  uses.visit(st.value);
+  return std::any_of(uses.accumulations.begin(), uses.accumulations.end(), [&](const Accumulate* acc) {
+    return facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours;
+  });
 }
 
 bool ModelEmitter::newton_pairs(const Statement& st) const {

@@ -524,10 +524,17 @@ void ModelEmitter::profile_state() {
   };
   std::vector<std::string> kernels, searches;
   for (const Kernel* k : profiled_) {
-    std::vector<std::string> effects;
+    std::vector<std::string> effects, leaves_out;
     for (const Origin& o : k->st->origins) effects.push_back(o.effect);
-    kernels.push_back(fmt::format("{{\"{}\", {}, \"line {}\"}}", k->name, quoted(effects),
-                                  file_.output_line(k->st->loc.begin)));
+    for (const auto& [member, alias] : k->fused)
+      for (const Origin& o : member->origins) effects.push_back(o.effect);
+    for (const Calibration& c : calibrations_)
+      if (c.profiled == k->profiled)
+        for (const std::vector<std::size_t>& origins : c.leaves_out)
+          leaves_out.push_back(fmt::format("{{{}}}", fmt::join(origins, ", ")));
+    kernels.push_back(fmt::format("{{\"{}\", {}, \"line {}\", {{{}}}}}", k->name, quoted(effects),
+                                  file_.output_line(k->st->loc.begin),
+                                  fmt::join(leaves_out, ", ")));
   }
   for (std::size_t k = 0; k < searches_.size(); ++k) {
     std::vector<const Statement*> served;

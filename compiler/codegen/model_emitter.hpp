@@ -157,12 +157,18 @@ class ModelEmitter {
     // its target and leaves the model's state as it was.
     std::string sink;
     int profiled = -1;  // --profile: a step kernel's index in partc::Profile
+    // A fused pass (facts_.fusion): its later members, relabelled to name
+    // their sums with st's labels (st then a copy with all of them), each
+    // with its aliasing; the pass's index.
+    std::vector<std::pair<const Statement*, const AliasFact*>> fused;
+    int pass = -1;
   };
   // --profile: a kernel of several effects' terms, and its variants: whole,
-  // then without each effect's term (Profile::calibrate).
+  // then without some of its origins each (Profile::calibrate).
   struct Calibration {
     int profiled;
     std::vector<std::string> variants;
+    std::vector<std::vector<std::size_t>> leaves_out;  // per variant after the whole
   };
   void plan_calibration(const Kernel k);  // a copy: kernels_ grows
   void profile_api();
@@ -188,6 +194,7 @@ class ModelEmitter {
   // walk when NeighbourSearch::pairs_once says it pays (else per-particle queries).
   bool half_lists(const Statement& st) const { return st.schedule.skin && newton_pairs(st); }
   bool newton_pairs(const Statement& st) const;
+  bool walks_pairs(const Statement& st) const;
   void refresh_lists(const Statement& st, const std::string& local, const ExpressionNames& names);
   ExpressionNames names_outside(const Statement& owner) const;
 
@@ -238,7 +245,8 @@ class ModelEmitter {
   std::vector<std::pair<std::string, std::vector<const Statement*>>> lists_served() const;
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
-  std::deque<Statement> variants_;  // the statements of calibration variants
+  // Statements codegen made: calibration variants, fused passes' members.
+  std::deque<Statement> variants_;
   std::vector<Calibration> calibrations_;
   std::vector<const Kernel*> profiled_;  // --profile: the step kernels, in order
   std::map<std::string, std::string> stage_methods_;  // named stage -> its method

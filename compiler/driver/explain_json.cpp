@@ -59,6 +59,19 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
   out["not_fused"] = Json::array();
   for (const ir::InlineRefusal& r : c.single_use.refused)
     out["not_fused"].push_back({{"set", r.set}, {"var", r.var}, {"reason", r.reason}});
+  out["fused_passes"] = Json::array();
+  for (const FusedPass& pass : c.facts.fusion.passes) {
+    Json lines = Json::array();
+    for (const auto& [g, k] : pass.statements) lines.push_back(c.model.stages[g].statements[k].line);
+    out["fused_passes"].push_back({{"lines", lines}, {"reason", pass.reason}});
+  }
+  out["not_fused_passes"] = Json::array();
+  for (const FusionRefusal& r : c.facts.fusion.refused)
+    out["not_fused_passes"].push_back(
+        {{"lines",
+          {c.model.stages[r.first.first].statements[r.first.second].line,
+           c.model.stages[r.second.first].statements[r.second.second].line}},
+         {"reason", r.reason}});
   out["sets"] = Json::array();
   for (const ir::ParticleSet& set : c.model.sets) {
     Json vars = Json::array();

@@ -39,6 +39,9 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   check_schedule(c.model, c.facts.neighbourhoods);
   // Which sums share a search, and at what radius: needs the schedule checked.
   c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
+  // Consecutive statements one walk can serve: needs the plan and symmetry.
+  c.facts.fusion = fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry,
+                                   c.facts.searches, file);
   // Terms that are NaN or Inf for coincident particles: warnings only.
   c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
@@ -132,6 +135,9 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                        file.line_reference(v.reader.begin));
   for (const ir::InlineRefusal& r : c.single_use.refused)
     out += fmt::format("not fused: {}.{} stays stored: {}\n", r.set, r.var, r.reason);
+  for (const FusedPass& pass : c.facts.fusion.passes) out += "fused pass: " + pass.reason + "\n";
+  for (const FusionRefusal& r : c.facts.fusion.refused)
+    out += "not fused pass: " + r.reason + "\n";
   out += "storage (computed in double however stored: a load widens, a store rounds once):\n";
   for (const ir::ParticleSet& set : c.model.sets) {
     for (const ir::Variable& var : set.vars)

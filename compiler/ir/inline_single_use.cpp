@@ -4,6 +4,8 @@
 #include <set>
 
 #include "ir/mutator.hpp"
+#include "ir/relabel.hpp"
+#include "ir/terms.hpp"
 #include "ir/visitor.hpp"
 
 namespace partc::ir {
@@ -39,24 +41,6 @@ struct UseOf : Visitor {
     ++depth;
     Visitor::visit(n);
     --depth;
-  }
-};
-
-// The writer's labels appended to the reader's: 0 stays the reader's own.
-struct Relabel : Mutator {
-  int base;
-  explicit Relabel(int b) : base(b) {}
-  int map(int label) const { return label == 0 ? 0 : base + label - 1; }
-  using Mutator::mutate;
-  Expr mutate(const VarRef& n, const Expr&) override {
-    return std::make_shared<VarRef>(n.type, n.set, n.var, map(n.label), n.loc);
-  }
-  Expr mutate(const Dx& n, const Expr&) override {
-    return std::make_shared<Dx>(map(n.from), map(n.to), n.loc);
-  }
-  Expr mutate(const Accumulate& n, const Expr&) override {
-    return std::make_shared<Accumulate>(n.type, n.reduction, map(n.label), mutate(n.condition),
-                                        mutate(n.body), n.id, n.loc);
   }
 };
 
@@ -177,16 +161,39 @@ class Inliner {
 
     // Fuse: the reader computes the writer's value where it read the variable.
     Statement fused = reader;
-    Relabel relabel(static_cast<int>(fused.labels.size()));
-    Substitute substitute;
-    substitute.set = s;
-    substitute.var = x;
-    substitute.value = relabel.mutate(writer.value);
-    fused.value = substitute.mutate(reader.value);
+    const int base = static_cast<int>(fused.labels.size());
+    auto into_reader = [&](const Expr& reader_value, const Expr& writer_value) {
+      Substitute substitute;
+      substitute.set = s;
+      substitute.var = x;
+      substitute.value = append_labels(writer_value, base);
+      return substitute.mutate(reader_value);
+    };
+    fused.value = into_reader(reader.value, writer.value);
     fused.labels.insert(fused.labels.end(), writer.labels.begin() + 1, writer.labels.end());
     fused.origins = writer.origins;
     fused.terms_by_origin = false;
     fused.origins.insert(fused.origins.end(), reader.origins.begin(), reader.origins.end());
+    // --profile's parts: the writer's, each in the reader (a writer of no
+    // split terms leaves all its origins out at once: its type's zero); the
+    // reader's that still read the writer, with all of it. Origins are
+    // numbered as fused.origins.
+    fused.without.clear();
+    std::vector<Statement::Without> writer_parts = parts_without(writer);
+    if (writer_parts.empty() && !writer.origins.empty()) {
+      std::vector<std::size_t> all(writer.origins.size());
+      for (std::size_t o = 0; o < all.size(); ++o) all[o] = o;
+      writer_parts.push_back({all, zero(var.type, writer.value->loc)});
+    }
+    for (const Statement::Without& part : writer_parts)
+      fused.without.push_back({part.origins, into_reader(reader.value, part.value)});
+    for (Statement::Without part : parts_without(reader)) {
+      UseOf still(s, x);
+      still.visit(part.value);
+      if (!still.uses) continue;  // the writer would go with that term: not the reader's alone
+      for (std::size_t& o : part.origins) o += writer.origins.size();
+      fused.without.push_back({part.origins, into_reader(part.value, writer.value)});
+    }
     if (default_schedule(fused.schedule)) fused.schedule = writer.schedule;
     report_.inlined.push_back({m_.sets[s].name, var.name, writer.loc, reader.loc});
     at(r) = std::move(fused);
@@ -199,6 +206,12 @@ class Inliner {
     return true;
   }
 
+  Expr zero(Type type, Location loc) const {
+    const Expr scalar = std::make_shared<Literal>(Type::Real, 0.0, loc);
+    if (type != Type::Vec) return scalar;
+    return std::make_shared<MakeVec>(std::vector<Expr>(m_.dim, scalar), loc);
+  }
+
   void remove_variable(int s, int x) {
     Renumber renumber;
     renumber.set = s;
@@ -208,6 +221,7 @@ class Inliner {
       for (Statement& st : stage.statements) {
         st.value = renumber.mutate(st.value);
         st.solve_operator = renumber.mutate(st.solve_operator);
+        for (Statement::Without& part : st.without) part.value = renumber.mutate(part.value);
         if (st.observable < 0 && st.set == s && st.var > x) --st.var;
       }
     for (ParticleSet& set : m_.sets)

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -362,6 +363,14 @@ struct Statement {
   // The value is the origins' terms joined, t1 + t2 - t3 (ir/terms.hpp): one
   // per origin, as channel merging made it; not once fusion inlined a writer.
   bool terms_by_origin = false;
+  // A statement fusion made (ir/inline_single_use.cpp): its value without
+  // some of its origins' contributions (indices into origins), for
+  // --profile's calibration. Origins no entry leaves out are the reader's.
+  struct Without {
+    std::vector<std::size_t> origins;
+    Expr value;
+  };
+  std::vector<Without> without;
   Schedule schedule;
   int set;
   int var;

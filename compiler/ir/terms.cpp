@@ -1,5 +1,6 @@
 #include "ir/terms.hpp"
 
+#include <cstddef>
 #include <memory>
 
 namespace partc::ir {
@@ -27,6 +28,19 @@ Expr join_terms(const std::vector<Term>& terms, Location loc) {
   for (std::size_t k = 1; k < terms.size(); ++k)
     out = std::make_shared<Binary>(out->type, terms[k].minus ? BinaryOp::Sub : BinaryOp::Add, out,
                                    terms[k].value, loc);
+  return out;
+}
+
+std::vector<Statement::Without> parts_without(const Statement& st) {
+  if (!st.without.empty()) return st.without;
+  std::vector<Statement::Without> out;
+  if (!st.terms_by_origin || st.origins.size() < 2) return out;
+  const std::vector<Term> terms = split_terms(st.value, st.origins.size());
+  for (std::size_t o = 0; o < terms.size(); ++o) {
+    std::vector<Term> rest = terms;
+    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o));
+    out.push_back({{o}, join_terms(rest, st.value->loc)});
+  }
   return out;
 }
 

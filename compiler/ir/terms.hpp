@@ -1,6 +1,7 @@
 // The terms of a statement that channel merging joined, one per effect
 // instance (Statement::terms_by_origin): fold_zero_terms removes the terms a
-// constant 0 cancels, and --profile times the statement without each one.
+// constant 0 cancels, and --profile times the statement without each one
+// (and fusion keeps those parts for the statement it makes).
 #pragma once
 
 #include <cstddef>
@@ -22,5 +23,10 @@ std::vector<Term> split_terms(const Expr& value, std::size_t n);
 
 // The terms joined again, as instantiation joins them.
 Expr join_terms(const std::vector<Term>& terms, Location loc);
+
+// The statement's value without some of its origins, for --profile: the
+// parts fusion recorded (Statement::without), else one per merged term;
+// none for a statement of one effect or of unsplit terms.
+std::vector<Statement::Without> parts_without(const Statement& st);
 
 }  // namespace partc::ir

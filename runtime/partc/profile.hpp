@@ -1,7 +1,8 @@
 // partc/profile.hpp: where a generated model's step time goes, per effect
 // instance, for models compiled with `partc --profile`.
 //
-//   partc::Profile profile({{"step_f", {"lj", "coulomb"}}, {"step_v", {"verlet"}}},
+//   partc::Profile profile({{"step_f", {"lj", "coulomb"}, "", {{0}, {1}}},
+//                           {"step_v", {"verlet"}, ""}},
 //                          {{"sums over A", {"lj", "coulomb"}}});
 //   { const partc::ProfileTimer t(profile, profile.step_slot()); ...
 //     { const partc::ProfileTimer k(profile, profile.kernel_slot(0)); step_f(); } ... }
@@ -14,13 +15,16 @@
 //   kernel that happened to need it first. Every slot together is step()'s
 //   time, exactly; nothing is counted twice.
 // - A kernel of several effects (their contributions merged into one
-//   statement, one pair walk) is split by a calibration after the run: the
-//   statement computed whole, then without each effect's term in turn, into
-//   a buffer nobody reads. Effect o's marginal cost is m_o = full - without_o;
-//   its share of the kernel's time T is T m_o / sum(m) (the shared walk split
-//   in proportion), and what dropping it would save is T m_o / full.
-// - A kernel of several effects that is not calibrated (a variable computed
-//   where it is read) is shown as their joint row: no split is claimed.
+//   statement, one pair walk; or a variable computed where it is read) is
+//   split by a calibration after the run: the statement computed whole, then
+//   without some of its effects' terms in turn, into a buffer nobody reads.
+//   Part o's marginal cost is m_o = full - without_o; what the variants
+//   leave in (a fused pass's reader, the integrator that reads the force) is
+//   the rest, full - sum(m). A part's share of the kernel's time T is
+//   T m_o / sum(m, rest) (the shared walk split in proportion), and what
+//   dropping it would save is T m_o / full; the rest's saving is not known.
+// - A kernel of several effects that is not calibrated is shown as their
+//   joint row: no split is claimed.
 // - A search's builds count towards an effect's saving only when that effect
 //   alone uses the search; otherwise they are a shared row.
 // - Timers are opened on the thread that calls step(), never inside a
@@ -50,6 +54,9 @@ struct ProfiledKernel {
   std::string name;
   std::vector<std::string> effects;
   std::string where;  // "line 12": for statements of no effect
+  // The effects (indices) each calibration variant after the whole leaves
+  // out; none: the kernel is not calibrated.
+  std::vector<std::vector<std::size_t>> leaves_out;
 };
 
 // One search or set of Verlet lists: what it serves, and the effects of the
@@ -62,10 +69,11 @@ struct ProfiledSearch {
 // An effect's (or a joint row's) time per step and what dropping it saves.
 struct EffectTime {
   std::string name;
-  double seconds = 0;     // over the run
-  double saving = 0;      // predicted, over the run
-  bool effect = false;    // an effect instance's row (or several's, joint)
-  bool predicted = true;  // false: a joint row, its saving unknown
+  double seconds = 0;   // over the run
+  double saving = 0;    // predicted, over the run
+  bool effect = false;  // an effect instance's row (or several's, joint)
+  // Why no saving is predicted; empty when one is.
+  std::string unpredicted;
 };
 
 class Profile {
@@ -96,13 +104,13 @@ class Profile {
 
   // Times each variant `rounds` times, interleaved so that a loaded machine
   // slows them alike: variants[0] computes the kernel's statement whole,
-  // variants[1 + o] without effect o's term. Each timing repeats a variant
+  // variants[1 + v] without the effects leaves_out[v]. Each timing repeats a variant
   // for at least min_seconds (a clock tick is not a cost); keeps the medians
   // per call.
   void calibrate(std::size_t kernel, int rounds, const std::vector<std::function<void()>>& variants,
                  double min_seconds = 5e-3) {
-    if (variants.size() != kernels_.at(kernel).effects.size() + 1)
-      throw std::invalid_argument("Profile::calibrate: one variant per effect, and the whole");
+    if (variants.size() != kernels_.at(kernel).leaves_out.size() + 1)
+      throw std::invalid_argument("Profile::calibrate: one variant per part left out, and the whole");
     const std::vector<double> step = seconds_;
     auto time = [](const std::function<void()>& f, int calls) {
       const auto start = std::chrono::steady_clock::now();
@@ -121,7 +129,7 @@ class Profile {
     seconds_ = step;  // a variant's search checks are not the step's
   }
 
-  // As calibrate measured: [0] the whole statement, [1 + o] without effect o.
+  // As calibrate measured: [0] the whole statement, [1 + v] without leaves_out[v].
   void set_calibration(std::size_t kernel, std::vector<double> seconds) {
     calibration_.at(kernel) = std::move(seconds);
   }
@@ -133,8 +141,10 @@ class Profile {
     auto row = [&](const std::string& name, bool effect = true) -> EffectTime& {
       for (EffectTime& r : rows)
         if (r.name == name) return r;
-      rows.push_back({name});
-      rows.back().effect = effect;
+      EffectTime r;
+      r.name = name;
+      r.effect = effect;
+      rows.push_back(r);
       return rows.back();
     };
     for (std::size_t k = 0; k < kernels_.size(); ++k) {
@@ -147,25 +157,11 @@ class Profile {
         r.seconds += t;
         r.saving += t;
       } else if (calibration_[k].empty()) {
-        std::string joint = kernel.effects.front();
-        for (std::size_t o = 1; o < kernel.effects.size(); ++o) joint += "+" + kernel.effects[o];
-        EffectTime& r = row(joint);
+        EffectTime& r = row(joined(kernel, all(kernel)));
         r.seconds += t;
-        r.predicted = false;
+        r.unpredicted = "joint: not split";
       } else {
-        const std::vector<double>& c = calibration_[k];
-        std::vector<double> marginal;
-        double total = 0;
-        for (std::size_t o = 0; o < kernel.effects.size(); ++o) {
-          marginal.push_back(std::max(0.0, c[0] - c[1 + o]));
-          total += marginal.back();
-        }
-        const double n = static_cast<double>(marginal.size());
-        for (std::size_t o = 0; o < kernel.effects.size(); ++o) {
-          EffectTime& r = row(kernel.effects[o]);
-          r.seconds += total > 0 ? t * marginal[o] / total : t / n;
-          if (c[0] > 0) r.saving += t * marginal[o] / c[0];
-        }
+        split(kernel, t, calibration_[k], row);
       }
     }
     for (std::size_t s = 0; s < searches_.size(); ++s) {
@@ -197,8 +193,8 @@ class Profile {
       text << "  " << std::left << std::setw(36) << r.name << std::right << std::setw(12)
            << r.seconds * per << std::setw(7) << std::setprecision(1)
            << (total > 0 ? 100 * r.seconds / total : 0) << "%" << std::setprecision(4);
-      if (r.effect && !r.predicted)
-        text << std::setw(26) << "joint: not split";
+      if (r.effect && !r.unpredicted.empty())
+        text << std::setw(26) << r.unpredicted;
       else if (r.effect)
         text << std::setw(26) << r.saving * per;
       text << "\n";
@@ -208,6 +204,59 @@ class Profile {
 
  private:
   friend class ProfileTimer;
+
+  static std::vector<std::size_t> all(const ProfiledKernel& kernel) {
+    std::vector<std::size_t> out(kernel.effects.size());
+    for (std::size_t o = 0; o < out.size(); ++o) out[o] = o;
+    return out;
+  }
+
+  // "pressure+viscosity": the effects' names, each once.
+  static std::string joined(const ProfiledKernel& kernel, const std::vector<std::size_t>& part) {
+    std::vector<std::string> names;
+    for (std::size_t o : part)
+      if (std::find(names.begin(), names.end(), kernel.effects.at(o)) == names.end())
+        names.push_back(kernel.effects[o]);
+    std::string out = names.front();
+    for (std::size_t n = 1; n < names.size(); ++n) out += "+" + names[n];
+    return out;
+  }
+
+  // A calibrated kernel's time t, by its parts' marginal costs.
+  template <class Row>
+  static void split(const ProfiledKernel& kernel, double t, const std::vector<double>& c,
+                    Row& row) {
+    std::vector<std::vector<std::size_t>> parts = kernel.leaves_out;
+    std::vector<double> marginal;
+    double total = 0;
+    for (std::size_t v = 0; v < parts.size(); ++v) {
+      marginal.push_back(std::max(0.0, c[0] - c[1 + v]));
+      total += marginal.back();
+    }
+    std::vector<std::size_t> rest;
+    for (std::size_t o : all(kernel))
+      if (std::none_of(parts.begin(), parts.end(), [&](const std::vector<std::size_t>& part) {
+            return std::find(part.begin(), part.end(), o) != part.end();
+          }))
+        rest.push_back(o);
+    const std::size_t left_out = parts.size();
+    if (!rest.empty()) {
+      parts.push_back(rest);
+      marginal.push_back(std::max(0.0, c[0] - total));
+      total += marginal.back();
+    }
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      const std::string name = joined(kernel, parts[p]);
+      EffectTime& r = row(name);
+      r.seconds += total > 0 ? t * marginal[p] / total : t / static_cast<double>(parts.size());
+      if (p >= left_out)
+        r.unpredicted = "rest of a fused pass";
+      else if (name.find('+') != std::string::npos)
+        r.unpredicted = "joint: not split";
+      else if (c[0] > 0)
+        r.saving += t * marginal[p] / c[0];
+    }
+  }
 
   static double median(std::vector<double> v) {
     if (v.empty()) return 0;

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """partc --explain=json on tests/cli/scene_damped.part: the facts of a scene,
-read as a tool would read them.
+read as a tool would read them; and on FUSED (tests/e2e/fused_pass.part),
+its fused pass.
 
-    check_explain_json.py PARTC SCENE
+    check_explain_json.py PARTC SCENE FUSED
 """
 import json
 import subprocess
@@ -23,7 +24,7 @@ def expect(condition, what):
 
 
 def main():
-    partc, scene = sys.argv[1], sys.argv[2]
+    partc, scene, fused_scene = sys.argv[1:4]
     all_three = facts(partc, scene)
     kept = [e["name"] for e in all_three["effects"]["kept"]]
     expect(kept == ["symplectic_euler", "drag", "soft_exp"], f"kept {kept}")
@@ -61,8 +62,16 @@ def main():
     effects = [o["effect"] for o in kick[0]["origins"]]
     expect(effects == ["soft_exp", "symplectic_euler"], f"origins of the folded kick {effects}")
     expect(all_three["folded"] == [], "folded without a const 0")
-    print("--explain=json: effects, modules, fusion, origins, liveness, --drop and folding as "
-          "expected")
+    # One statement walks: nothing to fuse, nothing refused.
+    expect(all_three["fused_passes"] == [] and all_three["not_fused_passes"] == [],
+           f"passes of one walk {all_three['fused_passes']} {all_three['not_fused_passes']}")
+
+    # LJ's energy, the force and Coulomb's energy: one pass of three statements.
+    passes = facts(partc, fused_scene)["fused_passes"]
+    expect(len(passes) == 1 and len(passes[0]["lines"]) == 3, f"fused passes {passes}")
+    expect("one walk of search 1" in passes[0]["reason"], f"reason {passes[0]['reason']}")
+    print("--explain=json: effects, modules, fusion, origins, liveness, --drop, folding and "
+          "fused passes as expected")
 
 
 if __name__ == "__main__":

@@ -234,3 +234,58 @@ TEST_CASE("fold: a term with a constant 0 factor is removed", "[analysis]") {
   CHECK(folded("u[i] += zero * normal()").size() == 1);  // a draw: its noise stays as it was
   CHECK(folded("u[i] += zero + w[i]").size() == 1);      // a model's own statement is one term
 }
+
+// The passes statement fusion makes of a step body (over P's u and w),
+// each as its members' step indices, and the reasons of its refusals.
+struct Passes {
+  std::vector<std::vector<int>> passes;
+  std::vector<std::string> refused;
+};
+Passes passes_of(const std::string& step_body) {
+  const partc::Compilation c = compile(step_body);
+  Passes out;
+  for (const partc::FusedPass& pass : c.facts.fusion.passes) {
+    out.passes.emplace_back();
+    for (const auto& [g, k] : pass.statements) out.passes.back().push_back(k);
+  }
+  for (const partc::FusionRefusal& r : c.facts.fusion.refused) out.refused.push_back(r.reason);
+  return out;
+}
+
+TEST_CASE("statement fusion: statements one walk serves share a pass", "[analysis]") {
+  const Passes two = passes_of(
+      "u[i] = sum(j, |dx| < r, w[j])\n"
+      "w[i] = 2 * sum(j, |dx| < r and |dx| > 0, 1 / |dx|)");
+  CHECK(two.passes.size() == 0);  // w's pass would write what u's sum reads at j
+  REQUIRE(two.refused.size() == 1);
+  CHECK_THAT(two.refused[0], Catch::Contains("reads w, which w[i]"));
+  // Neither reads the other's target: one pass, even past a statement they commute with.
+  const Passes fused = passes_of(
+      "u[i] = sum(j, |dx| < r, |dx|)\n"
+      "w[i] = sum(j, |dx| < r and |dx| > 0, 1 / |dx|)");
+  CHECK(fused.passes == std::vector<std::vector<int>>{{0, 1}});
+  CHECK(fused.refused.empty());
+}
+
+TEST_CASE("statement fusion: what one walk cannot serve stays apart, with its reason",
+          "[analysis]") {
+  // A statement between them that the second reads: it cannot be moved up.
+  CHECK(passes_of("u[i] = sum(j, |dx| < r, |dx|)\n"
+                  "p[i] += vec(0, 0, 1e-3)\n"
+                  "w[i] = sum(j, |dx| < r, 1)")
+            .passes.empty());
+  // Each pair once against both ways (|dx| + p[i].x is neither even nor odd in i, j).
+  const Passes ways = passes_of(
+      "u[i] = sum(j, |dx| < r, |dx|)\n"
+      "w[i] = sum(j, |dx| < r, |dx| + p[i].x)");
+  CHECK(ways.passes.empty());
+  REQUIRE(ways.refused.size() == 1);
+  CHECK_THAT(ways.refused[0], Catch::Contains("one takes each pair once, the other both ways"));
+  // Cutoffs far apart get searches of their own (the search plan): no shared walk.
+  const Passes apart = passes_of(
+      "u[i] = sum(j, |dx| < r, |dx|)\n"
+      "w[i] = sum(j, |dx| < 4 * r, |dx|)");
+  CHECK(apart.passes.empty());
+  REQUIRE(apart.refused.size() == 1);
+  CHECK_THAT(apart.refused[0], Catch::Contains("searches of their own"));
+}

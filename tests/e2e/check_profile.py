@@ -6,8 +6,9 @@ usage: check_profile.py PLAIN PROFILED WORKDIR EFFECT...
 Both run 50 steps on one thread. Their --output files must be identical
 byte for byte (the timers and the calibration change no value), and the
 profile's table must have a row per EFFECT with a predicted --drop saving,
-rows that sum to the step time it states, and that time within 5% of the
-driver's own clock around step()."""
+no joint row (every kernel of several effects is split by the
+calibration), rows that sum to the step time it states, and that time
+within 5% of the driver's own clock around step()."""
 import os
 import re
 import subprocess
@@ -50,6 +51,9 @@ if abs(total - step_ms) > 0.05 * step_ms:
     failures.append(f"rows sum to {total} ms a step, the table says {step_ms}")
 if abs(step_ms - clock) > 0.05 * clock:
     failures.append(f"the profile's step time {step_ms} ms is not within 5% of the driver's {clock}")
+for name, (_, saving) in rows.items():
+    if saving == "joint: not split":
+        failures.append(f"joint row {name}: its kernel was not split")
 for e in effects:
     if e not in rows:
         failures.append(f"no row for effect {e}")

@@ -9,9 +9,9 @@
 namespace {
 
 partc::Profile lj_coulomb() {
-  return partc::Profile({{"step_f", {"lj", "coulomb"}, ""},
-                         {"step_v", {"verlet"}, ""},
-                         {"step_e_kin", {}, "line 30"}},
+  return partc::Profile({{"step_f", {"lj", "coulomb"}, "", {{0}, {1}}},
+                         {"step_v", {"verlet"}, "", {}},
+                         {"step_e_kin", {}, "line 30", {}}},
                         {{"sums over A", {"lj", "coulomb"}}, {"sums over B", {"lj"}}});
 }
 
@@ -50,18 +50,49 @@ TEST_CASE("profile: a merged kernel is split by the calibration's marginal costs
   CHECK(p.step_seconds() == Approx(3.5));
 }
 
+TEST_CASE("profile: a fused kernel's reader gets the rest, with no saving claimed") {
+  // gravity's and pressure's merged acceleration, computed where verlet's kick reads it.
+  partc::Profile p({{"step_v", {"gravity", "pressure", "verlet"}, "", {{0}, {1}}}}, {});
+  p.add(p.kernel_slot(0), 2.0);
+  // Whole 1.0; without gravity 0.9, without pressure 0.6: the kick is the rest, 0.5.
+  p.set_calibration(0, {1.0, 0.9, 0.6});
+  const std::vector<partc::EffectTime> rows = p.attribute();
+  CHECK(row(rows, "gravity").seconds == Approx(0.2));
+  CHECK(row(rows, "gravity").saving == Approx(0.2));
+  CHECK(row(rows, "pressure").seconds == Approx(0.8));
+  CHECK(row(rows, "pressure").saving == Approx(0.8));
+  CHECK(row(rows, "verlet").seconds == Approx(1.0));
+  CHECK(row(rows, "verlet").unpredicted == "rest of a fused pass");
+  CHECK(row(rows, "gravity").unpredicted.empty());
+  // Variants that cost more than the whole (noise) leave no rest: the parts share t.
+  p.set_calibration(0, {1.0, 0.4, 0.2});
+  const std::vector<partc::EffectTime> noisy = p.attribute();
+  CHECK(row(noisy, "verlet").seconds == Approx(0.0));
+  CHECK(row(noisy, "gravity").seconds + row(noisy, "pressure").seconds == Approx(2.0));
+}
+
+TEST_CASE("profile: a part of several effects left out at once is their joint row") {
+  partc::Profile p({{"step_p", {"xsph", "drag", "euler"}, "", {{0, 1}}}}, {});
+  p.add(p.kernel_slot(0), 1.0);
+  p.set_calibration(0, {1.0, 0.25});
+  const std::vector<partc::EffectTime> rows = p.attribute();
+  CHECK(row(rows, "xsph+drag").seconds == Approx(0.75));
+  CHECK(row(rows, "xsph+drag").unpredicted == "joint: not split");
+  CHECK(row(rows, "euler").seconds == Approx(0.25));
+}
+
 TEST_CASE("profile: an uncalibrated kernel of several effects is one joint row") {
   partc::Profile p = lj_coulomb();
   p.add(p.kernel_slot(0), 2.0);
   const std::vector<partc::EffectTime> rows = p.attribute();
   CHECK(row(rows, "lj+coulomb").seconds == Approx(2.0));
-  CHECK_FALSE(row(rows, "lj+coulomb").predicted);
+  CHECK(row(rows, "lj+coulomb").unpredicted == "joint: not split");
   std::ostringstream out;
   p.report(out, 10);
   CHECK_THAT(out.str(), Catch::Contains("joint: not split"));
 }
 
-TEST_CASE("profile: a calibration needs the whole and one variant per effect") {
+TEST_CASE("profile: a calibration needs the whole and one variant per part left out") {
   partc::Profile p = lj_coulomb();
   int calls = 0;
   auto variant = [&] { ++calls; };

@@ -1,0 +1,43 @@
+// Statement fusion: which consecutive statements of the step share one pass
+// over their set, and so one walk of its pairs.
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analysis/neighbourhood.hpp"
+#include "analysis/search_plan.hpp"
+#include "analysis/symmetry.hpp"
+#include "ir/ir.hpp"
+#include "support/source.hpp"
+
+namespace partc {
+
+using StatementPosition = std::pair<int, int>;  // (stage, statement)
+
+// Statements computed in one pass, in their order: every particle's sums
+// of all of them from one walk, then each statement's update in turn.
+struct FusedPass {
+  std::vector<StatementPosition> statements;
+  std::string reason;  // its members and what they share, for people
+};
+
+// Two consecutive statements that would have shared a walk, and why not.
+struct FusionRefusal {
+  StatementPosition first, second;
+  std::string reason;
+};
+
+struct StatementFusion {
+  std::vector<FusedPass> passes;
+  std::vector<FusionRefusal> refused;
+  std::map<StatementPosition, int> pass_of;  // a member -> index into passes
+};
+
+StatementFusion fuse_statements(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
+                                const PairSymmetryReport& symmetry, const SearchPlan& searches,
+                                const SourceFile& file);
+
+}  // namespace partc

@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""partc --profile's predicted --drop savings against measured --drop runs.
+
+    bench_profile.py BENCH_BUILD_DIR [ROUNDS]
+
+BENCH_BUILD_DIR is tests/bench of a build with PARTC_BUILD_BENCH=ON and the
+target bench_profile_models built; its profile_scenes.txt lists the scenes
+(scene, steps, effects). Per scene: the --profile build runs once and its
+table gives each effect's predicted saving (ms a step); then the plain build
+and each --drop build run alternately, ROUNDS rounds (default 3), one thread,
+and the measured saving is the difference of the medians of the driver's
+step times. The issue's target: predicted within 10% of measured (for an
+effect that costs little, within 1% of the step: below that the rounds'
+spread on a shared machine is larger than the saving).
+
+What a prediction cannot see: dropping an effect can change the search
+radius (two_radii: Coulomb's 4.0 sets the radius of the shared walk) and
+the physics (SPH without viscosity moves otherwise), so the measured run
+does other work than the calibration's variant.
+"""
+import os
+import re
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ENV = dict(os.environ, OMP_NUM_THREADS="1")
+
+
+def run(program, steps):
+    return subprocess.run([str(program), "--steps", str(steps), "--seed", "1"], env=ENV,
+                          check=True, capture_output=True, text=True).stdout
+
+
+def step_ms(out, program):
+    match = re.search(r"(\d+) steps, seed \d+, ([0-9.e+-]+) s", out)
+    if not match:
+        sys.exit(f"{program}: no timing in its summary:\n{out}")
+    return 1e3 * float(match.group(2)) / int(match.group(1))
+
+
+def profile_rows(out, program):
+    """The profile table: row name -> (ms a step, the --drop column's text)."""
+    lines = out.splitlines()
+    start = next((k for k, l in enumerate(lines) if l.startswith("profile: ")), None)
+    if start is None:
+        sys.exit(f"{program}: no profile table:\n{out}")
+    step = float(re.search(r"([0-9.]+) ms a step in step\(\)", lines[start]).group(1))
+    rows = {}
+    for line in lines[start + 2:]:
+        m = re.match(r"  (.+?)\s+([0-9.]+)\s+([0-9.]+)%(?:\s+(\S.*))?$", line)
+        if not m:
+            break
+        rows[m.group(1)] = (float(m.group(2)), m.group(4) or "")
+    return step, rows
+
+
+def main():
+    build = Path(sys.argv[1])
+    rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+    print(f"one thread; {rounds} rounds of the plain and --drop builds, alternately; "
+          "ms a step (the driver's step time)")
+    print(f"{'scene':<12} {'--drop':<12} {'plain':>9} {'dropped':>9} {'measured':>9} "
+          f"{'predicted':>9} {'error':>8} {'of step':>8}  on target")
+    worst = 0.0
+    for line in (build / "profile_scenes.txt").read_text().splitlines():
+        scene, steps, *effects = line.split()
+        profiled = build / f"profile_{scene}_profiled"
+        step, rows = profile_rows(run(profiled, steps), profiled)
+        programs = [build / f"profile_{scene}_plain"] + [
+            build / f"profile_{scene}_drop_{e}" for e in effects]
+        times = {p: [] for p in programs}
+        for _ in range(rounds):
+            for p in programs:
+                times[p].append(step_ms(run(p, steps), p))
+        plain = statistics.median(times[programs[0]])
+        for effect, program in zip(effects, programs[1:]):
+            dropped = statistics.median(times[program])
+            measured = plain - dropped
+            row = rows.get(effect)
+            if row is None or not re.match(r"[0-9.]+$", row[1]):
+                print(f"{scene:<12} {effect:<12} {plain:>9.4f} {dropped:>9.4f} {measured:>9.4f} "
+                      f"{'-':>9} {'-':>8} {'-':>8}  no prediction ({row[1] if row else 'no row'})")
+                continue
+            predicted = float(row[1])
+            error = (predicted - measured) / measured if measured > 0 else float("inf")
+            of_step = (predicted - measured) / plain
+            on_target = abs(error) <= 0.1 or abs(of_step) <= 0.01
+            if not on_target:
+                worst = max(worst, abs(error))
+            print(f"{scene:<12} {effect:<12} {plain:>9.4f} {dropped:>9.4f} {measured:>9.4f} "
+                  f"{predicted:>9.4f} {100 * error:>7.1f}% {100 * of_step:>7.1f}%  "
+                  f"{'yes' if on_target else 'no'}")
+        print(f"{scene:<12} (the --profile build's step(): {step:.4f} ms a step, "
+              f"{100 * (step / plain - 1):+.1f}% on the plain build's)")
+    print(f"largest error off target: {100 * worst:.1f}%" if worst else "all on target")
+
+
+if __name__ == "__main__":
+    main()
