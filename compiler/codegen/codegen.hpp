@@ -6,6 +6,7 @@
 #include "analysis/aliasing.hpp"
 #include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
+#include "analysis/observed_steps.hpp"
 #include "analysis/search_plan.hpp"
 #include "analysis/symmetry.hpp"
 #include "analysis/uniform_sums.hpp"
@@ -28,6 +29,7 @@ struct ModelFacts {
   UniformSumReport uniform_sums;
   LinearOperatorReport linear_operators;
   SearchPlan searches;
+  ObservedStepReport observed_steps;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

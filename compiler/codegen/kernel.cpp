@@ -99,14 +99,20 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
     const Stage& stage = m_.stages[g];
     if (stage.kind != kind || stage.name != name || (after_load && !stage.also_after_load)) continue;
     auto call = [&](int k) {
+      // An observable nothing in a step reads: only when the state after the step is read.
+      auto observed = facts_.observed_steps.find({static_cast<int>(g), k});
+      const std::string guard =
+          observed != facts_.observed_steps.end() && observed->second.observed_only
+              ? "if (observed_) "
+              : "";
       for (const Kernel& kernel : kernels_) {
         if (kernel.position != std::make_pair(static_cast<int>(g), k) || !kernel.sink.empty())
           continue;
         if (kernel.profiled >= 0)
-          linef("{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
-                kernel.profiled, kernel.name);
+          linef("{}{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
+                guard, kernel.profiled, kernel.name);
         else
-          linef("{}();", kernel.name);
+          linef("{}{}();", guard, kernel.name);
       }
     };
     int next = 0;

@@ -43,7 +43,7 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   members_.reserve(cls_);  // a member or nested type named like the class would be its constructor
   observables_type_ = members_.fresh("Observables");
   for (const char* fixed :
-       {"params_", "rng_", "step_", "t_", "observables_", "domain_", "faces_"})
+       {"params_", "rng_", "step_", "t_", "observables_", "observed_", "domain_", "faces_"})
     members_.reserve(fixed);
   for (const ParticleSet& s : m_.sets) {
     set_member_.push_back(members_.fresh(cpp_name(s.name) + "_"));
@@ -83,6 +83,9 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
   plan_searches();
+  for (const auto& [position, fact] : facts_.observed_steps)
+    if (fact.observed_only)
+      observed_only_.insert(m_.stages[position.first].statements[position.second].observable);
 }
 
 std::string ModelEmitter::run() {
@@ -330,9 +333,11 @@ void ModelEmitter::public_api() {
   for (std::size_t s = 0; s < m_.sets.size(); ++s)
     linef("partc::check_finite({}, \"{}\", step_);", set_member_[s], m_.sets[s].name);
   if (m_.timestep) line("partc::check_finite_observable(t_, \"t\", step_);");
+  // An observable the last step did not compute holds a value already checked.
   for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
     if (m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec)
-      linef("partc::check_finite_observable(observables_.{}, \"{}\", step_);",
+      linef("{}partc::check_finite_observable(observables_.{}, \"{}\", step_);",
+            observed_only_.count(static_cast<int>(o)) ? "if (observed_) " : "",
             cpp_name(m_.observables[o].name), m_.observables[o].name);
   line("}");
   line("");
@@ -420,6 +425,7 @@ std::vector<std::string> ModelEmitter::set_comparisons(const std::vector<std::st
 void ModelEmitter::start_clock() {
   line("step_ = 0;");
   if (m_.timestep) line("t_ = 0;");
+  if (!observed_only_.empty()) line("observed_ = true;");
   for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o) {
     const Observable& obs = m_.observables[o];
     const Literal* literal = as<Literal>(obs.initial);
@@ -432,7 +438,19 @@ void ModelEmitter::start_clock() {
 void ModelEmitter::step() {
   line(m_.timestep ? "// One time step: every step block, in order; then t advances."
                    : "// One time step: every step block, in order.");
-  line("void step() {");
+  if (observed_only_.empty()) {
+    line("void step() {");
+  } else {
+    std::vector<std::string> names;
+    for (int o : observed_only_) names.push_back(m_.observables[o].name);
+    comment(fmt::format(
+        "observed = false: the state after this step is not read, so {} (which nothing in a "
+        "step reads) {} not computed and keep{} the value of the last observed step. The "
+        "driver observes the steps it logs and the last one.",
+        fmt::join(names, ", "), names.size() == 1 ? "is" : "are", names.size() == 1 ? "s" : ""));
+    line("void step(bool observed = true) {");
+    line("observed_ = observed;");
+  }
   if (options_.profile) line("const partc::ProfileTimer step_timer(profile_, profile_.step_slot());");
   stage_calls(StageKind::Step);
   if (m_.timestep)
@@ -803,6 +821,8 @@ void ModelEmitter::state() {
   line("std::int64_t step_ = 0;");
   if (m_.timestep) line("double t_ = 0;  // advanced by the timestep");
   if (has_user_observables()) linef("{} observables_;", observables_type_);
+  if (!observed_only_.empty())
+    line("bool observed_ = true;  // whether the last step computed every observable (step(observed))");
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     linef("{} {};", set_type_[s], set_member_[s]);
     linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],

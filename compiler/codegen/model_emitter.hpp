@@ -245,6 +245,9 @@ class ModelEmitter {
   // (set, var, sink) -> name, element: a buffered update's, or a variant's sink
   std::map<std::tuple<int, int, bool>, std::pair<std::string, std::string>> buffers_;
   std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
+  // Observables the step computes only when step(observed) is told so
+  // (analysis/observed_steps.cpp); none: step() takes no argument.
+  std::set<int> observed_only_;
 };
 
 }  // namespace partc::codegen
