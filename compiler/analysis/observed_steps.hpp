@@ -1,5 +1,5 @@
-// Observed steps: which observable statements of the step run only on the
-// steps whose end state is read (logged, checked, returned), not every step.
+// Observed steps: which statements of the step run only on the steps whose
+// end state is read (logged, written, returned), not every step.
 #pragma once
 
 #include <map>
@@ -17,7 +17,8 @@ struct ObservedStepFact {
   std::string reason;  // why, in the model's terms (for --explain)
 };
 
-// Keyed by (stage, statement), for every step statement that assigns an observable.
+// Keyed by (stage, statement): every step statement that assigns an
+// observable, and every other one that runs only on observed steps.
 using ObservedStepReport = std::map<std::pair<int, int>, ObservedStepFact>;
 
 ObservedStepReport find_observed_steps(const ir::Model& model);

@@ -83,9 +83,15 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
   plan_searches();
-  for (const auto& [position, fact] : facts_.observed_steps)
-    if (fact.observed_only)
-      observed_only_.insert(m_.stages[position.first].statements[position.second].observable);
+  for (const auto& [position, fact] : facts_.observed_steps) {
+    const Statement& st = m_.stages[position.first].statements[position.second];
+    const std::string target = target_name(m_, st);
+    if (!fact.observed_only || std::find(observed_only_targets_.begin(), observed_only_targets_.end(),
+                                         target) != observed_only_targets_.end())
+      continue;
+    observed_only_targets_.push_back(target);
+    if (st.observable >= 0) observed_only_.insert(st.observable);
+  }
 }
 
 std::string ModelEmitter::run() {
@@ -425,7 +431,7 @@ std::vector<std::string> ModelEmitter::set_comparisons(const std::vector<std::st
 void ModelEmitter::start_clock() {
   line("step_ = 0;");
   if (m_.timestep) line("t_ = 0;");
-  if (!observed_only_.empty()) line("observed_ = true;");
+  if (!observed_only_targets_.empty()) line("observed_ = true;");
   for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o) {
     const Observable& obs = m_.observables[o];
     const Literal* literal = as<Literal>(obs.initial);
@@ -438,16 +444,15 @@ void ModelEmitter::start_clock() {
 void ModelEmitter::step() {
   line(m_.timestep ? "// One time step: every step block, in order; then t advances."
                    : "// One time step: every step block, in order.");
-  if (observed_only_.empty()) {
+  if (observed_only_targets_.empty()) {
     line("void step() {");
   } else {
-    std::vector<std::string> names;
-    for (int o : observed_only_) names.push_back(m_.observables[o].name);
     comment(fmt::format(
-        "observed = false: the state after this step is not read, so {} (which nothing in a "
-        "step reads) {} not computed and keep{} the value of the last observed step. The "
-        "driver observes the steps it logs and the last one.",
-        fmt::join(names, ", "), names.size() == 1 ? "is" : "are", names.size() == 1 ? "s" : ""));
+        "observed = false: the state after this step will not be read, so what only it needs "
+        "is not computed: {} keep{} the value{} of the last observed step. The driver observes "
+        "the steps it logs or writes and the last one.",
+        fmt::join(observed_only_targets_, ", "), observed_only_targets_.size() == 1 ? "s" : "",
+        observed_only_targets_.size() == 1 ? "" : "s"));
     line("void step(bool observed = true) {");
     line("observed_ = observed;");
   }
@@ -821,8 +826,8 @@ void ModelEmitter::state() {
   line("std::int64_t step_ = 0;");
   if (m_.timestep) line("double t_ = 0;  // advanced by the timestep");
   if (has_user_observables()) linef("{} observables_;", observables_type_);
-  if (!observed_only_.empty())
-    line("bool observed_ = true;  // whether the last step computed every observable (step(observed))");
+  if (!observed_only_targets_.empty())
+    line("bool observed_ = true;  // whether the last step computed everything (step(observed))");
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     linef("{} {};", set_type_[s], set_member_[s]);
     linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],

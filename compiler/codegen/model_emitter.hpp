@@ -245,8 +245,10 @@ class ModelEmitter {
   // (set, var, sink) -> name, element: a buffered update's, or a variant's sink
   std::map<std::tuple<int, int, bool>, std::pair<std::string, std::string>> buffers_;
   std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
-  // Observables the step computes only when step(observed) is told so
-  // (analysis/observed_steps.cpp); none: step() takes no argument.
+  // What the step computes only when step(observed) is told so
+  // (analysis/observed_steps.cpp): targets in order, and the observables
+  // among them. None: step() takes no argument.
+  std::vector<std::string> observed_only_targets_;
   std::set<int> observed_only_;
 };
 

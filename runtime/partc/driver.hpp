@@ -32,9 +32,11 @@
 //   a progress row on the terminal every few steps (the model's interval, or
 //   --log-every; not with --quiet), and every step into --log FILE.csv
 //   (every M steps with --log-file-every M; the first and last always).
-// - Observables that nothing in a step reads are computed only on the steps
-//   the log shows or writes, and the last (a model's step(observed)): the
-//   fewer rows logged, the less a run computes.
+// - What only the state after a step needs (an observable nothing in a step
+//   reads, and what only it reads) is computed only on the steps the log
+//   shows or writes, VTK frames are written, and the last (a model's
+//   step(observed)): the fewer rows logged, the less a run computes. A
+//   --last-finite state may hold such variables from an earlier step.
 // - The summary says how many particles left through open faces, if any are
 //   open, and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
@@ -451,6 +453,11 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   const auto due = [](std::int64_t step, std::int64_t every) {
     return every > 0 && step % every == 0;
   };
+  const auto frame_due = [&](std::int64_t step) {
+    return std::any_of(series.begin(), series.end(), [&](const auto& s) {
+      return due(step, options.every.value_or(frames.at(s.first).every));
+    });
+  };
 
   if constexpr (has_stages<Model>::value)
     for (const auto& [name, runs] : options.stages)
@@ -460,9 +467,9 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   if constexpr (logs_observables<Model>::value)
     log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
                 options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
-  // Whether the state after a step is read: logged, or the run's last.
+  // Whether the state after a step is read: logged, written as a frame, or the run's last.
   const auto observed = [&](std::int64_t step) {
-    return step == options.steps || (log && log->uses(step));
+    return step == options.steps || frame_due(step) || (log && log->uses(step));
   };
 
   // Step 0 (the state after init or load) is checked and written like any other.
@@ -496,12 +503,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
         }
       }
       const std::int64_t step = model.step_count();
-      bool frame = false;
-      model.for_each_set([&](const char* name, const auto&) {
-        if (series.count(name) && due(step, options.every.value_or(frames.at(name).every)))
-          frame = true;
-      });
-      checked = due(step, options.check_every) || (frame && options.check_every > 0);
+      checked = due(step, options.check_every) || (frame_due(step) && options.check_every > 0);
       if (checked) check(step);
       if constexpr (logs_observables<Model>::value)
         if (observed(k)) log->row(step, model.log_row());
