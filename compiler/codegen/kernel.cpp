@@ -98,32 +98,38 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
   for (std::size_t g = 0; g < m_.stages.size(); ++g) {
     const Stage& stage = m_.stages[g];
     if (stage.kind != kind || stage.name != name || (after_load && !stage.also_after_load)) continue;
+    // Statements only the state after the step needs (analysis/observed_steps.cpp)
+    // run when it will be read: a run of them under one `if (observed_)`.
+    bool guarded = false;
+    auto guard = [&](bool observed_only) {
+      if (observed_only == guarded) return;
+      line(observed_only ? "if (observed_) {  // what only the state after the step needs" : "}");
+      guarded = observed_only;
+    };
     auto call = [&](int k) {
-      // An observable nothing in a step reads: only when the state after the step is read.
       auto observed = facts_.observed_steps.find({static_cast<int>(g), k});
-      const std::string guard =
-          observed != facts_.observed_steps.end() && observed->second.observed_only
-              ? "if (observed_) "
-              : "";
+      guard(observed != facts_.observed_steps.end() && observed->second.observed_only);
       for (const Kernel& kernel : kernels_) {
         if (kernel.position != std::make_pair(static_cast<int>(g), k) || !kernel.sink.empty())
           continue;
         if (kernel.profiled >= 0)
-          linef("{}{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
-                guard, kernel.profiled, kernel.name);
+          linef("{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
+                kernel.profiled, kernel.name);
         else
-          linef("{}{}();", guard, kernel.name);
+          linef("{}();", kernel.name);
       }
     };
     int next = 0;
     for (const Iterate& loop : stage.loops) {
       for (; next < loop.first; ++next) call(next);
+      guard(false);
       const ExpressionNames names = base_names();
       const std::string passes = members_.fresh("passes");
       linef("// {}: iterate until {}, at most {} passes", source_line(loop.loc),
             source_text(loop.until->loc), source_text(loop.limit->loc));
       linef("for (std::int64_t {0} = 1;; ++{0}) {{", passes);
       for (; next < loop.last; ++next) call(next);
+      guard(false);
       linef("if ({}) break;", expression(loop.until, names));
       linef("if ({} >= {}) {{", passes, expression(loop.limit, names));
       StatementUses reads;
@@ -141,6 +147,7 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
       line("}");
     }
     for (; next < static_cast<int>(stage.statements.size()); ++next) call(next);
+    guard(false);
   }
 }
 

@@ -339,12 +339,17 @@ void ModelEmitter::public_api() {
   for (std::size_t s = 0; s < m_.sets.size(); ++s)
     linef("partc::check_finite({}, \"{}\", step_);", set_member_[s], m_.sets[s].name);
   if (m_.timestep) line("partc::check_finite_observable(t_, \"t\", step_);");
-  // An observable the last step did not compute holds a value already checked.
-  for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
-    if (m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec)
-      linef("{}partc::check_finite_observable(observables_.{}, \"{}\", step_);",
-            observed_only_.count(static_cast<int>(o)) ? "if (observed_) " : "",
-            cpp_name(m_.observables[o].name), m_.observables[o].name);
+  // Then those the last step computed only if observed: a value it did not
+  // compute was checked when it was.
+  for (bool observed_only : {false, true}) {
+    if (observed_only && !observed_only_.empty()) line("if (observed_) {");
+    for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
+      if ((m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec) &&
+          (observed_only_.count(static_cast<int>(o)) > 0) == observed_only)
+        linef("partc::check_finite_observable(observables_.{}, \"{}\", step_);",
+              cpp_name(m_.observables[o].name), m_.observables[o].name);
+    if (observed_only && !observed_only_.empty()) line("}");
+  }
   line("}");
   line("");
 }
