@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """partc --explain=json on tests/cli/scene_damped.part: the facts of a scene,
-read as a tool would read them.
+read as a tool would read them; on tests/golden/observed_steps.part, which
+statements run only on observed steps.
 
-    check_explain_json.py PARTC SCENE
+    check_explain_json.py PARTC SCENE OBSERVED_STEPS
 """
 import json
 import subprocess
@@ -61,8 +62,18 @@ def main():
     effects = [o["effect"] for o in kick[0]["origins"]]
     expect(effects == ["soft_exp", "symplectic_euler"], f"origins of the folded kick {effects}")
     expect(all_three["folded"] == [], "folded without a const 0")
-    print("--explain=json: effects, modules, fusion, origins, liveness, --drop and folding as "
-          "expected")
+
+    # Each step statement of an observable says whether it runs only on observed
+    # steps, and why; so does a variable statement that does.
+    runs = {s["target"]: s["runs"] for s in facts(partc, sys.argv[3])["statements"]
+            if s["stage"] == "step" and "runs" in s}
+    observed_only = sorted(t for t, r in runs.items() if r["observed_only"])
+    expect(observed_only == ["e_pair", "e_tot", "u[i]"], f"observed only: {observed_only}")
+    expect(sorted(runs) == ["e_kin", "e_pair", "e_tot", "n_hot", "u[i]"], f"runs of {sorted(runs)}")
+    expect("line 26 reads it every step" in runs["e_kin"]["reason"], f"e_kin: {runs['e_kin']}")
+    expect("adds to it (+=)" in runs["n_hot"]["reason"], f"n_hot: {runs['n_hot']}")
+    print("--explain=json: effects, modules, fusion, origins, liveness, --drop, folding and "
+          "observed steps as expected")
 
 
 if __name__ == "__main__":
