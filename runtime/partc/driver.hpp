@@ -140,7 +140,7 @@ struct has_observed_steps<Model, std::void_t<decltype(std::declval<Model&>().ste
     : std::true_type {};
 
 template <class Model>
-void step(Model& model, bool observed) {
+void take_step(Model& model, bool observed) {
   if constexpr (has_observed_steps<Model>::value)
     model.step(observed);
   else
@@ -157,8 +157,8 @@ inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
          " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M]"
-         " [--last-finite FILE.csv] [--log FILE.csv]"
-         " [--log-every M] [--log-file-every M] [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
+         " [--last-finite FILE.csv] [--log FILE.csv] [--log-every M] [--log-file-every M]"
+         " [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -496,10 +496,10 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
       if (k > 0) {
         if constexpr (has_profile<Model>::value) {
           const auto before = std::chrono::steady_clock::now();
-          detail::step(model, observed(k));
+          take_step(model, observed(k));
           stepping += std::chrono::steady_clock::now() - before;
         } else {
-          detail::step(model, observed(k));
+          take_step(model, observed(k));
         }
       }
       const std::int64_t step = model.step_count();
