@@ -122,7 +122,7 @@ ObservedStepReport find_observed_steps(const ir::Model& model) {
     if (stage.kind == ir::StageKind::Init) continue;
     for (const ir::Iterate& loop : stage.loops)
       for (Value v : values_read({loop.until, loop.limit}))
-        every_step.emplace(v, fmt::format("the iterate condition on line {} reads it",
+        every_step.emplace(v, fmt::format("an iterate condition reads it (the loop of line {})",
                                           stage.statements[loop.first].line));
     for (std::size_t k = 0; k < stage.statements.size(); ++k) {
       const ir::Statement& st = stage.statements[k];
@@ -163,6 +163,8 @@ ObservedStepReport find_observed_steps(const ir::Model& model) {
         if (every_step.count(v) || !last_writer.count(v)) continue;
         if (!reader_observed_only)
           every_step[v] = fmt::format("line {} reads it every step", reader.line);
+        else if (q == last_writer[v] && target(reader) == v)
+          every_step[v] = fmt::format("line {} reads the value the step before left", reader.line);
         else if (q <= last_writer[v])
           every_step[v] =
               fmt::format("line {} reads it before line {} assigns it: the step before's value",
