@@ -39,8 +39,9 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   check_schedule(c.model, c.facts.neighbourhoods);
   // Which sums share a search, and at what radius: needs the schedule checked.
   c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
-  // Observables only the state after a step reads: on the statements codegen
-  // emits (after fusion and folding), with no other fact needed.
+  // What only the state after a step needs (an observable nothing in a step
+  // reads, and what only it reads) runs only on observed steps: judged on the
+  // statements codegen emits (after fusion and folding); needs no other fact.
   c.facts.observed_steps = find_observed_steps(c.model);
   // Terms that are NaN or Inf for coincident particles: warnings only.
   c.coincident = find_coincident_pairs(c.model, file.text());
