@@ -66,8 +66,8 @@ bool reads_observable(const Statement& st, int observable) {
 class Fuser {
  public:
   Fuser(const ir::Model& m, const NeighbourhoodReport& n, const PairSymmetryReport& s,
-        const SearchPlan& p, const SourceFile& file)
-      : m_(m), neighbourhoods_(n), symmetry_(s), plan_(p), file_(file) {}
+        const SearchPlan& p, const ObservedStepReport& o, const SourceFile& file)
+      : m_(m), neighbourhoods_(n), symmetry_(s), plan_(p), observed_(o), file_(file) {}
 
   StatementFusion run() {
     // The step's statements in the order step() runs them.
@@ -110,10 +110,16 @@ class Fuser {
       out_.pass_of[b] = pass->second;
     }
     for (FusedPass& pass : out_.passes) {
-      std::vector<std::string> members;
-      for (StatementPosition p : pass.statements) members.push_back(named(at(p)));
+      std::vector<std::string> members, every_step;
+      for (StatementPosition p : pass.statements) {
+        members.push_back(named(at(p)));
+        const auto fact = observed_.find(p);
+        if (fact == observed_.end() || !fact->second.observed_only) every_step.push_back(members.back());
+      }
       pass.reason = fmt::format("{}: one pass over {}, {}", fmt::join(members, "; "),
                                 m_.sets[at(pass.statements.front()).set].name, pass.reason);
+      if (!every_step.empty() && every_step.size() < members.size())
+        pass.reason += fmt::format("; on steps not observed, {} alone", fmt::join(every_step, "; "));
     }
     return out_;
   }
@@ -212,6 +218,7 @@ class Fuser {
   const NeighbourhoodReport& neighbourhoods_;
   const PairSymmetryReport& symmetry_;
   const SearchPlan& plan_;
+  const ObservedStepReport& observed_;
   const SourceFile& file_;
   StatementFusion out_;
 };
@@ -220,8 +227,8 @@ class Fuser {
 
 StatementFusion fuse_statements(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
                                 const PairSymmetryReport& symmetry, const SearchPlan& searches,
-                                const SourceFile& file) {
-  return Fuser(model, neighbourhoods, symmetry, searches, file).run();
+                                const ObservedStepReport& observed, const SourceFile& file) {
+  return Fuser(model, neighbourhoods, symmetry, searches, observed, file).run();
 }
 
 }  // namespace partc

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/neighbourhood.hpp"
+#include "analysis/observed_steps.hpp"
 #include "analysis/search_plan.hpp"
 #include "analysis/symmetry.hpp"
 #include "ir/ir.hpp"
@@ -18,7 +19,9 @@ namespace partc {
 using StatementPosition = std::pair<int, int>;  // (stage, statement)
 
 // Statements computed in one pass, in their order: every particle's sums
-// of all of them from one walk, then each statement's update in turn.
+// of all of them from one walk, then each statement's update in turn. When
+// some members run only on observed steps (a pair energy), the others run
+// as a pass of their own on the steps not observed.
 struct FusedPass {
   std::vector<StatementPosition> statements;
   std::string reason;  // its members and what they share, for people
@@ -38,6 +41,6 @@ struct StatementFusion {
 
 StatementFusion fuse_statements(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
                                 const PairSymmetryReport& symmetry, const SearchPlan& searches,
-                                const SourceFile& file);
+                                const ObservedStepReport& observed, const SourceFile& file);
 
 }  // namespace partc

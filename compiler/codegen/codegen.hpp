@@ -6,6 +6,7 @@
 #include "analysis/aliasing.hpp"
 #include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
+#include "analysis/observed_steps.hpp"
 #include "analysis/search_plan.hpp"
 #include "analysis/statement_fusion.hpp"
 #include "analysis/symmetry.hpp"
@@ -29,6 +30,7 @@ struct ModelFacts {
   UniformSumReport uniform_sums;
   LinearOperatorReport linear_operators;
   SearchPlan searches;
+  ObservedStepReport observed_steps;
   StatementFusion fusion;
 };
 

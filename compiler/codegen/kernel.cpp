@@ -23,6 +23,51 @@
 
 namespace partc::codegen {
 
+// A kernel's name: its stage's, then its target's.
+std::string ModelEmitter::target(const Statement& st) const {
+  return st.observable >= 0 ? m_.observables[st.observable].name
+                            : (m_.sets.size() > 1 ? m_.sets[st.set].name + "_" : "") +
+                                  m_.sets[st.set].vars[st.var].name;
+}
+
+bool ModelEmitter::observed_only(std::pair<int, int> position) const {
+  const auto fact = facts_.observed_steps.find(position);
+  return fact != facts_.observed_steps.end() && fact->second.observed_only;
+}
+
+// The kernel of a fused pass's members (positions, in order), at the
+// first's position: one label table, the first member's then each later's.
+ModelEmitter::Kernel ModelEmitter::pass_kernel(const std::vector<std::pair<int, int>>& positions,
+                                               const std::string& stage_name, int pass) {
+  const auto [g, k] = positions.front();
+  const Statement& first = m_.stages[g].statements[k];
+  Statement lead = first;
+  std::vector<Statement> members;
+  std::string name = stage_name + "_" + target(first);
+  for (std::size_t n = 1; n < positions.size(); ++n) {
+    const auto [mg, mk] = positions[n];
+    Statement member = m_.stages[mg].statements[mk];
+    member.value = append_labels(member.value, static_cast<int>(lead.labels.size()));
+    lead.labels.insert(lead.labels.end(), member.labels.begin() + 1, member.labels.end());
+    members.push_back(std::move(member));
+    name += "_" + target(members.back());
+  }
+  Kernel kernel{members_.fresh(name), nullptr, &facts_.aliasing[g][k], positions.front()};
+  kernel.pass = pass;
+  for (std::size_t n = 0; n < members.size(); ++n) {
+    members[n].labels = lead.labels;
+    variants_.push_back(std::move(members[n]));
+    const auto [mg, mk] = positions[n + 1];
+    if (lists_.count(&m_.stages[mg].statements[mk]))
+      lists_[&variants_.back()] = lists_.at(&m_.stages[mg].statements[mk]);
+    kernel.fused.push_back({&variants_.back(), &facts_.aliasing[mg][mk]});
+  }
+  variants_.push_back(std::move(lead));
+  if (lists_.count(&first)) lists_[&variants_.back()] = lists_.at(&first);
+  kernel.st = &variants_.back();
+  return kernel;
+}
+
 void ModelEmitter::plan_kernels() {
   if (!kernels_.empty()) return;
   for (std::size_t g = 0; g < m_.stages.size(); ++g) {
@@ -37,42 +82,32 @@ void ModelEmitter::plan_kernels() {
       const std::string stage_name = stage.kind == StageKind::Init   ? "init"
                                      : stage.kind == StageKind::Step ? "step"
                                                                      : stage.name;
-      auto target = [&](const Statement& s) {
-        return s.observable >= 0 ? m_.observables[s.observable].name
-                                 : (m_.sets.size() > 1 ? m_.sets[s.set].name + "_" : "") +
-                                       m_.sets[s.set].vars[s.var].name;
-      };
       if (pass == facts_.fusion.pass_of.end()) {
         kernels_.push_back({members_.fresh(stage_name + "_" + target(st)), &st,
                             &facts_.aliasing[g][k], position});
         continue;
       }
-      // One label table for the pass: the first member's, then each later's.
-      Statement lead = st;
-      std::vector<Statement> members;
-      std::string name = stage_name + "_" + target(st);
-      for (std::size_t n = 1; n < facts_.fusion.passes[pass->second].statements.size(); ++n) {
-        const auto [mg, mk] = facts_.fusion.passes[pass->second].statements[n];
-        Statement member = m_.stages[mg].statements[mk];
-        member.value = append_labels(member.value, static_cast<int>(lead.labels.size()));
-        lead.labels.insert(lead.labels.end(), member.labels.begin() + 1, member.labels.end());
-        members.push_back(std::move(member));
-        name += "_" + target(members.back());
+      const std::vector<std::pair<int, int>>& all = facts_.fusion.passes[pass->second].statements;
+      std::vector<std::pair<int, int>> every_step;
+      for (const std::pair<int, int>& p : all)
+        if (!observed_only(p)) every_step.push_back(p);
+      Kernel whole = pass_kernel(all, stage_name, pass->second);
+      if (every_step.empty() || every_step.size() == all.size()) {
+        kernels_.push_back(std::move(whole));
+        continue;
       }
-      Kernel kernel{members_.fresh(name), nullptr, &facts_.aliasing[g][k], position};
-      kernel.pass = pass->second;
-      for (std::size_t n = 0; n < members.size(); ++n) {
-        members[n].labels = lead.labels;
-        variants_.push_back(std::move(members[n]));
-        const auto [mg, mk] = facts_.fusion.passes[pass->second].statements[n + 1];
-        if (lists_.count(&m_.stages[mg].statements[mk]))
-          lists_[&variants_.back()] = lists_.at(&m_.stages[mg].statements[mk]);
-        kernel.fused.push_back({&variants_.back(), &facts_.aliasing[mg][mk]});
-      }
-      variants_.push_back(std::move(lead));
-      if (lists_.count(&st)) lists_[&variants_.back()] = lists_.at(&st);
-      kernel.st = &variants_.back();
-      kernels_.push_back(std::move(kernel));
+      // Some members run only on observed steps: the whole pass then, and
+      // the others alone (where the pass runs) on the steps not observed.
+      whole.observed = 1;
+      kernels_.push_back(std::move(whole));
+      const auto [eg, ek] = every_step.front();
+      Kernel rest = every_step.size() > 1
+                        ? pass_kernel(every_step, stage_name, pass->second)
+                        : Kernel{members_.fresh(stage_name + "_" + target(m_.stages[eg].statements[ek])),
+                                 &m_.stages[eg].statements[ek], &facts_.aliasing[eg][ek], position};
+      rest.position = position;
+      rest.observed = 0;
+      kernels_.push_back(std::move(rest));
     }
   }
   if (!options_.profile) return;
@@ -141,26 +176,50 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
   for (std::size_t g = 0; g < m_.stages.size(); ++g) {
     const Stage& stage = m_.stages[g];
     if (stage.kind != kind || stage.name != name || (after_load && !stage.also_after_load)) continue;
+    // Statements only the state after the step needs (analysis/observed_steps.cpp)
+    // run when it will be read: a run of them under one `if (observed_)`.
+    bool guarded = false;
+    auto guard = [&](bool observed_only) {
+      if (observed_only == guarded) return;
+      line(observed_only ? "if (observed_) {  // what only the state after the step needs" : "}");
+      guarded = observed_only;
+    };
+    auto call_one = [&](const Kernel& kernel) {
+      if (kernel.profiled >= 0)
+        linef("{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
+              kernel.profiled, kernel.name);
+      else
+        linef("{}();", kernel.name);
+    };
     auto call = [&](int k) {
-      for (const Kernel& kernel : kernels_) {
-        if (kernel.position != std::make_pair(static_cast<int>(g), k) || !kernel.sink.empty())
-          continue;
-        if (kernel.profiled >= 0)
-          linef("{{ const partc::ProfileTimer timer(profile_, profile_.kernel_slot({})); {}(); }}",
-                kernel.profiled, kernel.name);
-        else
-          linef("{}();", kernel.name);
+      const std::pair<int, int> position{static_cast<int>(g), k};
+      std::vector<const Kernel*> here;
+      for (const Kernel& kernel : kernels_)
+        if (kernel.position == position && kernel.sink.empty()) here.push_back(&kernel);
+      if (here.empty()) return;  // a later member of a fused pass
+      if (here.front()->observed < 0) {
+        guard(observed_only(position));
+        for (const Kernel* kernel : here) call_one(*kernel);
+        return;
       }
+      guard(false);  // a pass of both kinds: whole when observed, else its every-step part
+      line("if (observed_) {");
+      call_one(*here[0]);
+      line("} else {");
+      call_one(*here[1]);
+      line("}");
     };
     int next = 0;
     for (const Iterate& loop : stage.loops) {
       for (; next < loop.first; ++next) call(next);
+      guard(false);
       const ExpressionNames names = base_names();
       const std::string passes = members_.fresh("passes");
       linef("// {}: iterate until {}, at most {} passes", source_line(loop.loc),
             source_text(loop.until->loc), source_text(loop.limit->loc));
       linef("for (std::int64_t {0} = 1;; ++{0}) {{", passes);
       for (; next < loop.last; ++next) call(next);
+      guard(false);
       linef("if ({}) break;", expression(loop.until, names));
       linef("if ({} >= {}) {{", passes, expression(loop.limit, names));
       StatementUses reads;
@@ -178,6 +237,7 @@ void ModelEmitter::stage_calls(StageKind kind, const std::string& name, bool aft
       line("}");
     }
     for (; next < static_cast<int>(stage.statements.size()); ++next) call(next);
+    guard(false);
   }
 }
 

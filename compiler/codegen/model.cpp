@@ -43,7 +43,7 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   members_.reserve(cls_);  // a member or nested type named like the class would be its constructor
   observables_type_ = members_.fresh("Observables");
   for (const char* fixed :
-       {"params_", "rng_", "step_", "t_", "observables_", "domain_", "faces_"})
+       {"params_", "rng_", "step_", "t_", "observables_", "observed_", "domain_", "faces_"})
     members_.reserve(fixed);
   for (const ParticleSet& s : m_.sets) {
     set_member_.push_back(members_.fresh(cpp_name(s.name) + "_"));
@@ -83,6 +83,15 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
   for (const ParticleSet& s : m_.sets) members_.reserve(cpp_name(s.name));
   for (const UserFn& f : m_.functions) function_member_.push_back(members_.fresh(cpp_name(f.name)));
   plan_searches();
+  for (const auto& [position, fact] : facts_.observed_steps) {
+    const Statement& st = m_.stages[position.first].statements[position.second];
+    const std::string target = target_name(m_, st);
+    if (!fact.observed_only || std::find(observed_only_targets_.begin(), observed_only_targets_.end(),
+                                         target) != observed_only_targets_.end())
+      continue;
+    observed_only_targets_.push_back(target);
+    if (st.observable >= 0) observed_only_.insert(st.observable);
+  }
 }
 
 std::string ModelEmitter::run() {
@@ -330,10 +339,17 @@ void ModelEmitter::public_api() {
   for (std::size_t s = 0; s < m_.sets.size(); ++s)
     linef("partc::check_finite({}, \"{}\", step_);", set_member_[s], m_.sets[s].name);
   if (m_.timestep) line("partc::check_finite_observable(t_, \"t\", step_);");
-  for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
-    if (m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec)
-      linef("partc::check_finite_observable(observables_.{}, \"{}\", step_);",
-            cpp_name(m_.observables[o].name), m_.observables[o].name);
+  // Then those the last step computed only if observed: a value it did not
+  // compute was checked when it was.
+  for (bool observed_only : {false, true}) {
+    if (observed_only && !observed_only_.empty()) line("if (observed_) {");
+    for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o)
+      if ((m_.observables[o].type == Type::Real || m_.observables[o].type == Type::Vec) &&
+          (observed_only_.count(static_cast<int>(o)) > 0) == observed_only)
+        linef("partc::check_finite_observable(observables_.{}, \"{}\", step_);",
+              cpp_name(m_.observables[o].name), m_.observables[o].name);
+    if (observed_only && !observed_only_.empty()) line("}");
+  }
   line("}");
   line("");
 }
@@ -420,6 +436,7 @@ std::vector<std::string> ModelEmitter::set_comparisons(const std::vector<std::st
 void ModelEmitter::start_clock() {
   line("step_ = 0;");
   if (m_.timestep) line("t_ = 0;");
+  if (!observed_only_targets_.empty()) line("observed_ = true;");
   for (std::size_t o = kFirstUserObservable; o < m_.observables.size(); ++o) {
     const Observable& obs = m_.observables[o];
     const Literal* literal = as<Literal>(obs.initial);
@@ -432,7 +449,18 @@ void ModelEmitter::start_clock() {
 void ModelEmitter::step() {
   line(m_.timestep ? "// One time step: every step block, in order; then t advances."
                    : "// One time step: every step block, in order.");
-  line("void step() {");
+  if (observed_only_targets_.empty()) {
+    line("void step() {");
+  } else {
+    comment(fmt::format(
+        "observed = false: the state after this step will not be read, so what only it needs "
+        "is not computed: {} keep{} the value{} of the last observed step. The driver observes "
+        "the steps it logs or writes and the last one.",
+        fmt::join(observed_only_targets_, ", "), observed_only_targets_.size() == 1 ? "s" : "",
+        observed_only_targets_.size() == 1 ? "" : "s"));
+    line("void step(bool observed = true) {");
+    line("observed_ = observed;");
+  }
   if (options_.profile) line("const partc::ProfileTimer step_timer(profile_, profile_.step_slot());");
   stage_calls(StageKind::Step);
   if (m_.timestep)
@@ -810,6 +838,8 @@ void ModelEmitter::state() {
   line("std::int64_t step_ = 0;");
   if (m_.timestep) line("double t_ = 0;  // advanced by the timestep");
   if (has_user_observables()) linef("{} observables_;", observables_type_);
+  if (!observed_only_targets_.empty())
+    line("bool observed_ = true;  // whether the last step computed everything (step(observed))");
   for (std::size_t s = 0; s < m_.sets.size(); ++s) {
     linef("{} {};", set_type_[s], set_member_[s]);
     linef("std::uint64_t {} = 0;  // bumped whenever {}'s positions or order change", epoch_[s],

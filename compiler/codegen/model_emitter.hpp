@@ -162,7 +162,14 @@ class ModelEmitter {
     // with its aliasing; the pass's index.
     std::vector<std::pair<const Statement*, const AliasFact*>> fused;
     int pass = -1;
+    // A pass of members that run every step and members that run only on
+    // observed steps: 1, its kernel then (all of them); 0, on the others.
+    int observed = -1;
   };
+  Kernel pass_kernel(const std::vector<std::pair<int, int>>& positions,
+                     const std::string& stage_name, int pass);
+  std::string target(const Statement& st) const;
+  bool observed_only(std::pair<int, int> position) const;
   // --profile: a kernel of several effects' terms, and its variants: whole,
   // then without some of its origins each (Profile::calibrate).
   struct Calibration {
@@ -253,6 +260,11 @@ class ModelEmitter {
   // (set, var, sink) -> name, element: a buffered update's, or a variant's sink
   std::map<std::tuple<int, int, bool>, std::pair<std::string, std::string>> buffers_;
   std::map<int, std::pair<std::string, std::string>> pair_sums_;  // Accumulate::id -> name, element
+  // What the step computes only when step(observed) is told so
+  // (analysis/observed_steps.cpp): targets in order, and the observables
+  // among them. None: step() takes no argument.
+  std::vector<std::string> observed_only_targets_;
+  std::set<int> observed_only_;
 };
 
 }  // namespace partc::codegen

@@ -94,6 +94,10 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
       for (const ir::Origin& o : st.origins)
         s["origins"].push_back({{"effect", o.effect}, {"at", where(file, o.loc)}});
       s["update"] = c.facts.aliasing[g][k].reason;
+      if (auto observed = c.facts.observed_steps.find({static_cast<int>(g), static_cast<int>(k)});
+          observed != c.facts.observed_steps.end())
+        s["runs"] = {{"observed_only", observed->second.observed_only},
+                     {"reason", observed->second.reason}};
       s["accumulations"] = Json::array();
       for (const ir::Accumulate* acc : ir::accumulations_in(st)) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);

@@ -39,9 +39,14 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   check_schedule(c.model, c.facts.neighbourhoods);
   // Which sums share a search, and at what radius: needs the schedule checked.
   c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
-  // Consecutive statements one walk can serve: needs the plan and symmetry.
+  // What only the state after a step needs (an observable nothing in a step
+  // reads, and what only it reads) runs only on observed steps: judged on the
+  // statements codegen emits (after fusion and folding); needs no other fact.
+  c.facts.observed_steps = find_observed_steps(c.model);
+  // Consecutive statements one walk can serve: needs the plan and symmetry,
+  // and which statements run only on observed steps (a pass runs whole or not).
   c.facts.fusion = fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry,
-                                   c.facts.searches, file);
+                                   c.facts.searches, c.facts.observed_steps, file);
   // Terms that are NaN or Inf for coincident particles: warnings only.
   c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
@@ -163,6 +168,9 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                              file.slice(o.loc));
       }
       out += "  update: " + c.facts.aliasing[g][k].reason + "\n";
+      if (auto observed = c.facts.observed_steps.find({static_cast<int>(g), static_cast<int>(k)});
+          observed != c.facts.observed_steps.end())
+        out += "  runs: " + observed->second.reason + "\n";
       if (st.solve_operator)
         out += "  solve: " +
                c.facts.linear_operators.at({static_cast<int>(g), static_cast<int>(k)}).reason + "\n";

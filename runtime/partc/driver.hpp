@@ -4,7 +4,7 @@
 //
 // Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
-// --last-finite FILE.csv, --log FILE.csv, --log-every M, --quiet;
+// --last-finite FILE.csv, --log FILE.csv, --log-every M, --log-file-every M, --quiet;
 // "--option=value" works too. Exit status: 0 success, 1 bad input file or I/O
 // failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
@@ -30,7 +30,13 @@
 //   --output always writes the whole state, so that --input can read it back.
 // - A model with `output NAME, ...` logs those observables (thermo_log.hpp):
 //   a progress row on the terminal every few steps (the model's interval, or
-//   --log-every; not with --quiet), and every step into --log FILE.csv.
+//   --log-every; not with --quiet), and every step into --log FILE.csv
+//   (every M steps with --log-file-every M; the first and last always).
+// - What only the state after a step needs (an observable nothing in a step
+//   reads, and what only it reads) is computed only on the steps the log
+//   shows or writes, VTK frames are written, and the last (a model's
+//   step(observed)): the fewer rows logged, the less a run computes. A
+//   --last-finite state may hold such variables from an earlier step.
 // - The summary says how many particles left through open faces, if any are
 //   open, and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
@@ -81,6 +87,7 @@ struct DriverOptions {
   std::string matrix_market;  // "" = no Matrix Market files of solves
   std::vector<std::pair<std::string, std::int64_t>> stages;  // (named stage, runs), in order
   std::optional<std::int64_t> log_every;                     // overrides the model's interval
+  std::int64_t log_file_every = 1;                           // --log's rows
   bool quiet = false;
 };
 
@@ -125,6 +132,21 @@ template <class Model>
 struct has_profile<Model, std::void_t<decltype(std::declval<const Model&>().profile())>>
     : std::true_type {};
 
+// Models with observables only the state after a step reads take step(observed).
+template <class Model, class = void>
+struct has_observed_steps : std::false_type {};
+template <class Model>
+struct has_observed_steps<Model, std::void_t<decltype(std::declval<Model&>().step(true))>>
+    : std::true_type {};
+
+template <class Model>
+void take_step(Model& model, bool observed) {
+  if constexpr (has_observed_steps<Model>::value)
+    model.step(observed);
+  else
+    model.step();
+}
+
 template <class Model, class = void>
 struct has_time : std::false_type {};
 template <class Model>
@@ -135,8 +157,8 @@ inline std::string usage_line(const std::string& model) {
   return "usage: " + model +
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
          " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M]"
-         " [--last-finite FILE.csv] [--log FILE.csv]"
-         " [--log-every M] [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
+         " [--last-finite FILE.csv] [--log FILE.csv] [--log-every M] [--log-file-every M]"
+         " [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -235,15 +257,19 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
     } else if (option == "--output") {
       options.output = value();
       require_directory_of(option, options.output);
-    } else if (option == "--log" || option == "--log-every") {
+    } else if (option == "--log" || option == "--log-every" || option == "--log-file-every") {
       if constexpr (!logs_observables<Model>::value)
         throw UsageError("option " + option + ": model " + std::string(Model::model_name) +
                          " logs no observables (its .part file has no 'output' line)");
       if (option == "--log") {
         options.log = value();
         require_directory_of(option, options.log);
-      } else {
+      } else if (option == "--log-every") {
         options.log_every = parse_count<std::int64_t>(option, value());
+      } else {
+        options.log_file_every = parse_count<std::int64_t>(option, value());
+        if (options.log_file_every == 0)
+          throw UsageError("--log-file-every must be at least 1 (step 0 is always written)");
       }
     } else if (option == "--stage") {
       const std::string spec = value();
@@ -309,7 +335,9 @@ void print_help(std::ostream& out, const Model& model) {
     text << "  --log FILE.csv       write the logged observables every step (columns: "
          << join(Model::log_columns()) << ")\n"
          << "  --log-every M        a progress row every M steps (default " << model.log_every()
-         << "; 0: none)\n";
+         << "; 0: none)\n"
+         << "  --log-file-every M   a row in --log's file every M steps (default 1; the first and\n"
+         << "                       the last always)\n";
   text << "  --quiet              no summary at the end\n"
        << "  --help               this text\n\n"
        << "Parameters:\n";
@@ -425,6 +453,11 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   const auto due = [](std::int64_t step, std::int64_t every) {
     return every > 0 && step % every == 0;
   };
+  const auto frame_due = [&](std::int64_t step) {
+    return std::any_of(series.begin(), series.end(), [&](const auto& s) {
+      return due(step, options.every.value_or(frames.at(s.first).every));
+    });
+  };
 
   if constexpr (has_stages<Model>::value)
     for (const auto& [name, runs] : options.stages)
@@ -433,7 +466,11 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   std::optional<ThermoLog> log;
   if constexpr (logs_observables<Model>::value)
     log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
-                options.log_every.value_or(model.log_every()), options.log);
+                options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
+  // Whether the state after a step is read: logged, written as a frame, or the run's last.
+  const auto observed = [&](std::int64_t step) {
+    return step == options.steps || frame_due(step) || (log && log->uses(step));
+  };
 
   // Step 0 (the state after init or load) is checked and written like any other.
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
@@ -459,21 +496,17 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
       if (k > 0) {
         if constexpr (has_profile<Model>::value) {
           const auto before = std::chrono::steady_clock::now();
-          model.step();
+          take_step(model, observed(k));
           stepping += std::chrono::steady_clock::now() - before;
         } else {
-          model.step();
+          take_step(model, observed(k));
         }
       }
       const std::int64_t step = model.step_count();
-      bool frame = false;
-      model.for_each_set([&](const char* name, const auto&) {
-        if (series.count(name) && due(step, options.every.value_or(frames.at(name).every)))
-          frame = true;
-      });
-      checked = due(step, options.check_every) || (frame && options.check_every > 0);
+      checked = due(step, options.check_every) || (frame_due(step) && options.check_every > 0);
       if (checked) check(step);
-      if constexpr (logs_observables<Model>::value) log->row(step, model.log_row());
+      if constexpr (logs_observables<Model>::value)
+        if (observed(k)) log->row(step, model.log_row());
       double time = static_cast<double>(step);
       if constexpr (has_time<Model>::value) time = model.time();
       model.for_each_set([&](const char* name, const auto& set) {

@@ -3,14 +3,18 @@
 // the terminal, and every row in a CSV file that plotting tools load.
 //
 //   partc::ThermoLog log({"step", "t", "e_kin"}, &std::cout, 10, "run.csv");
-//   log.row(step, {double(step), t, e_kin});   // every step; it picks which to show
+//   if (log.uses(step)) log.row(step, {double(step), t, e_kin});  // it picks which to show
 //   log.close();
 //
 // Surprises:
-// - The CSV file gets every row it is given, flushed as it goes, so a run
+// - The CSV file gets every row it is given (every csv_every-th step, and the
+//   first and the last, when csv_every > 1), flushed as it goes, so a run
 //   that stops early (a blow-up, a signal) keeps its series up to that
 //   point: the file is a record of the run, not its result, and is written
 //   in place rather than through a temporary.
+// - uses(step) says whether a row of that step would be written or shown; a
+//   caller may compute rows only for those steps and the last one, whose row
+//   close() shows and writes if no interval did.
 // - The terminal shows a row when step % every == 0, and always the first
 //   and the last row (close() prints a last row not yet shown); every = 0
 //   shows none.
@@ -37,10 +41,14 @@ namespace partc {
 class ThermoLog {
  public:
   // columns: the names of a row's values, the step first. terminal: where
-  // progress rows go (null: nowhere). csv_path: "" for no file.
+  // progress rows go (null: nowhere). csv_path: "" for no file; csv_every >= 1.
   ThermoLog(std::vector<std::string> columns, std::ostream* terminal, std::int64_t every,
-            const std::string& csv_path)
-      : columns_(std::move(columns)), terminal_(terminal), every_(every), path_(csv_path) {
+            const std::string& csv_path, std::int64_t csv_every = 1)
+      : columns_(std::move(columns)),
+        terminal_(terminal),
+        every_(every),
+        path_(csv_path),
+        csv_every_(csv_every) {
     for (const std::string& c : columns_)
       widths_.push_back(std::max<int>(12, static_cast<int>(c.size()) + 2));
     if (path_.empty()) return;
@@ -51,28 +59,25 @@ class ThermoLog {
     check_csv();
   }
 
+  bool uses(std::int64_t step) const { return writes(step) || shows(step); }
+
   void row(std::int64_t step, const std::vector<double>& values) {
-    if (csv_.is_open()) {
-      std::string line;
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        if (k) line += ',';
-        detail::append_number(line, values[k]);
-      }
-      csv_ << line << "\n" << std::flush;
-      check_csv();
+    if (writes(step)) {
+      write(values);
+      written_ = step;
     }
-    if (first_ || (every_ > 0 && step % every_ == 0)) {
+    if (shows(step)) {
       show(values);
       shown_ = step;
-    } else {
-      last_ = values;
     }
+    last_ = values;
     last_step_ = step;
     first_ = false;
   }
 
   void close() {
     if (last_ && shown_ != last_step_) show(*last_);
+    if (last_ && csv_.is_open() && written_ != last_step_) write(*last_);
     last_.reset();
     if (csv_.is_open()) {
       csv_.close();
@@ -81,6 +86,23 @@ class ThermoLog {
   }
 
  private:
+  bool writes(std::int64_t step) const {
+    return csv_.is_open() && (first_ || step % csv_every_ == 0);
+  }
+  bool shows(std::int64_t step) const {
+    return terminal_ && every_ > 0 && (first_ || step % every_ == 0);
+  }
+
+  void write(const std::vector<double>& values) {
+    std::string line;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (k) line += ',';
+      detail::append_number(line, values[k]);
+    }
+    csv_ << line << "\n" << std::flush;
+    check_csv();
+  }
+
   void show(const std::vector<double>& values) {
     if (!terminal_ || every_ == 0) return;
     std::ostringstream text;
@@ -109,10 +131,11 @@ class ThermoLog {
   std::ostream* terminal_;
   std::int64_t every_;
   std::string path_;
+  std::int64_t csv_every_;
   std::ofstream csv_;
   bool first_ = true, header_shown_ = false;
-  std::int64_t shown_ = -1, last_step_ = -1;
-  std::optional<std::vector<double>> last_;  // the latest row not shown
+  std::int64_t shown_ = -1, written_ = -1, last_step_ = -1;
+  std::optional<std::vector<double>> last_;  // the latest row, for close()
 };
 
 }  // namespace partc

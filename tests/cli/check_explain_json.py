@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """partc --explain=json on tests/cli/scene_damped.part: the facts of a scene,
-read as a tool would read them; and on FUSED (tests/e2e/fused_pass.part),
+read as a tool would read them; on tests/golden/observed_steps.part, which
+statements run only on observed steps; and on FUSED (tests/e2e/fused_pass.part),
 its fused pass.
 
-    check_explain_json.py PARTC SCENE FUSED
+    check_explain_json.py PARTC SCENE OBSERVED_STEPS FUSED
 """
 import json
 import subprocess
@@ -24,7 +25,7 @@ def expect(condition, what):
 
 
 def main():
-    partc, scene, fused_scene = sys.argv[1:4]
+    partc, scene, observed_scene, fused_scene = sys.argv[1:5]
     all_three = facts(partc, scene)
     kept = [e["name"] for e in all_three["effects"]["kept"]]
     expect(kept == ["symplectic_euler", "drag", "soft_exp"], f"kept {kept}")
@@ -70,8 +71,18 @@ def main():
     passes = facts(partc, fused_scene)["fused_passes"]
     expect(len(passes) == 1 and len(passes[0]["lines"]) == 3, f"fused passes {passes}")
     expect("one walk of search 1" in passes[0]["reason"], f"reason {passes[0]['reason']}")
+
+    # Each step statement of an observable says whether it runs only on observed
+    # steps, and why; so does a variable statement that does.
+    runs = {s["target"]: s["runs"] for s in facts(partc, observed_scene)["statements"]
+            if s["stage"] == "step" and "runs" in s}
+    observed_only = sorted(t for t, r in runs.items() if r["observed_only"])
+    expect(observed_only == ["e_pair", "e_tot", "u[i]"], f"observed only: {observed_only}")
+    expect(sorted(runs) == ["e_kin", "e_pair", "e_tot", "n_hot", "u[i]"], f"runs of {sorted(runs)}")
+    expect("line 26 reads it every step" in runs["e_kin"]["reason"], f"e_kin: {runs['e_kin']}")
+    expect("adds to it (+=)" in runs["n_hot"]["reason"], f"n_hot: {runs['n_hot']}")
     print("--explain=json: effects, modules, fusion, origins, liveness, --drop, folding and "
-          "fused passes as expected")
+          "observed steps and fused passes as expected")
 
 
 if __name__ == "__main__":

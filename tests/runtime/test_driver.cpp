@@ -131,6 +131,22 @@ class TwoSets : public Toy {
   sample::Set q_;
 };
 
+// Toy with a log of its step count every 4 steps, whose step(observed) notes
+// the steps the driver says will be read.
+class Observing : public Toy {
+ public:
+  static constexpr const char* model_name = "observing";
+  static std::vector<std::string> log_columns() { return {"step"}; }
+  std::int64_t log_every() const { return 4; }
+  std::vector<double> log_row() const { return {static_cast<double>(step_count())}; }
+
+  void step(bool observed = true) {
+    if (observed) observed_steps.push_back(step_count() + 1);
+    Toy::step();
+  }
+  inline static std::vector<std::int64_t> observed_steps;
+};
+
 struct Run {
   int status;
   std::string out, err;
@@ -284,6 +300,29 @@ TEST_CASE("driver: --vtk writes a .pvd and a .vtu every --every steps", "[driver
   CHECK(pvd.find("timestep=\"4\" part=\"0\" file=\"run_P_000004.vtu\"") != std::string::npos);
   CHECK(read_file(prefix + "_P_000004.vtu")
             .find("<Piece NumberOfPoints=\"4\" NumberOfCells=\"4\">") != std::string::npos);
+}
+
+// A step is observed when the log shows or writes its row, a VTK frame is
+// written, or it is the last; the log gets rows of observed steps only.
+TEST_CASE("driver: observes the steps it logs, writes as frames, and the last", "[driver]") {
+  const auto observed = [](std::vector<std::string> args) {
+    Observing::observed_steps.clear();
+    args.insert(args.end(), {"--steps", "10"});
+    REQUIRE(run<Observing>(args).status == 0);
+    return Observing::observed_steps;
+  };
+  using Steps = std::vector<std::int64_t>;
+  CHECK(observed({"--quiet"}) == Steps{10});
+  CHECK(observed({}) == Steps{4, 8, 10});
+  CHECK(observed({"--log-every", "5"}) == Steps{5, 10});
+  const std::string log = path_in("observed", "log.csv");
+  CHECK(observed({"--quiet", "--log", log, "--log-file-every", "3"}) == Steps{3, 6, 9, 10});
+  CHECK(read_file(log) == "step\n0\n3\n6\n9\n10\n");
+  CHECK(observed({"--quiet", "--log", log}).size() == 10);
+  CHECK(observed({"--quiet", "--vtk", path_in("observed", "run"), "--every", "5"}) == Steps{5, 10});
+  const Run zero = run<Observing>({"--log-file-every", "0"});
+  CHECK(zero.status == 2);
+  CHECK(zero.err.rfind("observing: error: --log-file-every must be at least 1", 0) == 0);
 }
 
 TEST_CASE("driver: a NaN is exit 3 with variable, id and step, and no --output", "[driver]") {

@@ -71,6 +71,34 @@ TEST_CASE("thermo log: the CSV file holds every row and reads back exactly", "[i
   std::filesystem::remove(path);
 }
 
+// The driver computes a row only for the steps the log uses and the last:
+// what it gets then is what it writes and shows.
+TEST_CASE("thermo log: the rows it uses, and a CSV file of every k-th row and the last",
+          "[io][log]") {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "partc_test_thermo_log_every.csv").string();
+  std::ostringstream terminal;
+  {
+    partc::ThermoLog log({"step", "e"}, &terminal, 4, path, 3);
+    std::vector<int> used;
+    for (int step = 0; step <= 10; ++step)
+      if (log.uses(step) || step == 10) {
+        used.push_back(step);
+        log.row(step, {double(step), 0.5 * step});
+      }
+    log.close();
+    CHECK(used == std::vector<int>{0, 3, 4, 6, 8, 9, 10});
+  }
+  const partc::CsvTable table = partc::read_csv(path);
+  const std::vector<double> steps = {0, 3, 6, 9, 10};  // every third and the last
+  REQUIRE(table.rows.size() == steps.size());
+  for (std::size_t k = 0; k < steps.size(); ++k) CHECK(table.rows[k][0] == steps[k]);
+  CHECK(lines_of(terminal.str()).size() == 5);  // header, 0, 4, 8, 10
+  partc::ThermoLog quiet({"step"}, nullptr, 4, "");
+  CHECK_FALSE(quiet.uses(0));
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("thermo log: an unwritable path is an error naming it", "[io][log]") {
   CHECK_THROWS_WITH(partc::ThermoLog({"step"}, nullptr, 1, "/nonexistent/dir/log.csv"),
                     Catch::Contains("cannot open '/nonexistent/dir/log.csv'"));
