@@ -7,7 +7,7 @@ BENCH_BUILD_DIR is tests/bench of a build with PARTC_BUILD_BENCH=ON and the
 target bench_profile_models built; its profile_scenes.txt lists the scenes
 (scene, steps, effects). Per scene: the --profile build runs once and its
 table gives each effect's predicted saving (ms a step); then the plain build
-and each --drop build run alternately, ROUNDS rounds (default 3), one thread,
+and each --drop build run alternately, ROUNDS rounds (default 5), one thread,
 and the measured saving is the difference of the medians of the driver's
 step times. The issue's target: predicted within 10% of measured (for an
 effect that costs little, within 1% of the step: below that the rounds'
@@ -58,7 +58,7 @@ def profile_rows(out, program):
 
 def main():
     build = Path(sys.argv[1])
-    rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+    rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 5
     print(f"one thread; {rounds} rounds of the plain and --drop builds, alternately; "
           "ms a step (the driver's step time)")
     print(f"{'scene':<12} {'--drop':<12} {'plain':>9} {'dropped':>9} {'measured':>9} "
