@@ -25,6 +25,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "e2e"))
+from profile_table import read_table  # noqa: E402  (tests/e2e/profile_table.py)
+
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 
 
@@ -41,19 +44,10 @@ def step_ms(out, program):
 
 
 def profile_rows(out, program):
-    """The profile table: row name -> (ms a step, the --drop column's text)."""
-    lines = out.splitlines()
-    start = next((k for k, l in enumerate(lines) if l.startswith("profile: ")), None)
-    if start is None:
+    table = read_table(out)
+    if table is None:
         sys.exit(f"{program}: no profile table:\n{out}")
-    step = float(re.search(r"([0-9.]+) ms a step in step\(\)", lines[start]).group(1))
-    rows = {}
-    for line in lines[start + 2:]:
-        m = re.match(r"  (.+?)\s+([0-9.]+)\s+([0-9.]+)%(?:\s+(\S.*))?$", line)
-        if not m:
-            break
-        rows[m.group(1)] = (float(m.group(2)), m.group(4) or "")
-    return step, rows
+    return table
 
 
 def main():
