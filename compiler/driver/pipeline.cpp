@@ -21,7 +21,7 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file, c.warnings);
-  // Terms a constant 0 removes (use force.gravity_z(const g = 0)): before
+  // Terms a constant 0 removes (use force.gravity(const g = 0)): before
   // fusion and the analyses, so nothing only they read is loaded or searched.
   c.folded = ir::fold_zero_terms(c.model);
   // Fusion across statements: an effect's variable set and read once per

@@ -1,5 +1,5 @@
 // Terms that are zero whatever the data: a contribution with a factor that
-// is a constant 0 -- a scene's `use force.gravity_z(const g = 0)`, or a
+// is a constant 0 -- a scene's `use force.gravity(const g = 0)`, or a
 // module's const parameter left at 0 -- is removed from its statement, and a
 // contribution that loses every term is removed with it.
 //

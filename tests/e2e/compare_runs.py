@@ -7,7 +7,7 @@ the same numbers bit for bit (the driver writes 17 significant digits).
                     [--particles SET] PROGRAM_A PROGRAM_B [ARGS...]
 
 --rename A=B gives PROGRAM_B "--set B=VALUE" where PROGRAM_A gets
-"--set A=VALUE" (a model's parameter g is its scene's gravity_z.g).
+"--set A=VALUE" (a model's parameter g is its scene's gravity.g).
 --ignore COLUMN leaves out a column of PROGRAM_A that PROGRAM_B does not
 store (a value its scene computes where it is used); for a vector, all
 its components (--ignore f leaves out f_0, f_1, f_2).
