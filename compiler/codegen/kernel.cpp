@@ -343,10 +343,11 @@ void ModelEmitter::kernel(const Kernel& k) {
   for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
+    const int var = key.second;  // a lambda may not capture a structured binding (C++17)
     const bool written =
         key.first == home && k.sink.empty() &&
         std::any_of(members.begin(), members.end(), [&](const auto& m) {
-          return m.first->observable < 0 && m.first->var == key.second;
+          return m.first->observable < 0 && m.first->var == var;
         });
     linef("{}auto& {} = {};", written ? "" : "const ", name, array_access(key.first, key.second));
   }
