@@ -149,6 +149,9 @@ class ModelEmitter {
   // ---- kernels ----------------------------------------------------------
 
   struct Kernel {
+    Kernel(std::string n, const Statement* s, const AliasFact* a, std::pair<int, int> p,
+           std::string into = "")
+        : name(std::move(n)), st(s), alias(a), position(p), sink(std::move(into)) {}
     std::string name;
     const Statement* st;
     const AliasFact* alias;
