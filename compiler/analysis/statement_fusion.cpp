@@ -169,11 +169,7 @@ class Fuser {
     return fmt::format("{} of {}", ir::target_name(m_, st), fmt::join(effects, ", "));
   }
 
-  bool in_loop(StatementPosition p) const {
-    const auto& loops = m_.stages[p.first].loops;
-    return std::any_of(loops.begin(), loops.end(),
-                       [&](const ir::Iterate& l) { return p.second >= l.first && p.second < l.last; });
-  }
+  bool in_loop(StatementPosition p) const { return m_.stages[p.first].in_loop(p.second); }
 
   // Why a's pass may not take b too; "" when it may.
   std::string refusal(StatementPosition pa, StatementPosition pb) const {

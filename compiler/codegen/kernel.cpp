@@ -249,8 +249,7 @@ void ModelEmitter::kernels() {
 void ModelEmitter::kernel(const Kernel& k) {
   const Statement& st = *k.st;  // a fused pass's first member, with every member's labels
   const int home = st.set;
-  std::vector<std::pair<const Statement*, const AliasFact*>> members{{&st, k.alias}};
-  members.insert(members.end(), k.fused.begin(), k.fused.end());
+  const auto members = k.members();
   StatementUses uses;
   for (const auto& [member, alias] : members) {
     uses.visit(member->value);
@@ -436,8 +435,7 @@ void ModelEmitter::kernel(const Kernel& k) {
 // statement they were merged into) and the decisions behind it.
 void ModelEmitter::kernel_comment(const Kernel& k, const StatementUses& uses) {
   const Statement& st = *k.st;
-  std::vector<std::pair<const Statement*, const AliasFact*>> members{{&st, k.alias}};
-  members.insert(members.end(), k.fused.begin(), k.fused.end());
+  const auto members = k.members();
   for (const auto& [member, alias] : members) {
     if (member->origins.empty()) {
       linef("// {}", source_line(member->loc));

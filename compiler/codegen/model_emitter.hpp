@@ -168,6 +168,12 @@ class ModelEmitter {
     // A pass of members that run every step and members that run only on
     // observed steps: 1, its kernel then (all of them); 0, on the others.
     int observed = -1;
+    // st and the fused members, each with its aliasing: what the kernel computes.
+    std::vector<std::pair<const Statement*, const AliasFact*>> members() const {
+      std::vector<std::pair<const Statement*, const AliasFact*>> all{{st, alias}};
+      all.insert(all.end(), fused.begin(), fused.end());
+      return all;
+    }
   };
   Kernel pass_kernel(const std::vector<std::pair<int, int>>& positions,
                      const std::string& stage_name, int pass);

@@ -46,12 +46,6 @@ bool zero(const Expr& e, const Model& model) {
   }
 }
 
-Expr zero_of(Type type, int dim, Location loc) {
-  if (type != Type::Vec) return std::make_shared<Literal>(type, 0, loc);
-  return std::make_shared<MakeVec>(
-      std::vector<Expr>(dim, std::make_shared<Literal>(Type::Real, 0, loc)), loc);
-}
-
 // Whether there is anything to fold: a literal is as plain as 0 gets.
 bool plain(const Expr& e) {
   if (e->kind == ExprKind::Literal) return true;

@@ -63,11 +63,6 @@ struct Renumber : Mutator {
   }
 };
 
-bool in_loop(const Stage& stage, int k) {
-  return std::any_of(stage.loops.begin(), stage.loops.end(),
-                     [&](const Iterate& l) { return k >= l.first && k < l.last; });
-}
-
 bool default_schedule(const Schedule& s) {
   return s.search == SearchChoice::Auto && !s.skin && s.solver == SolverChoice::Auto &&
          !s.compensated;
@@ -129,7 +124,7 @@ class Inliner {
     if (m_.stages[w.first].kind != StageKind::Step || m_.stages[r.first].kind != StageKind::Step ||
         r < w)
       return refuse(s, x, "not set and then read within one step");
-    if (in_loop(m_.stages[w.first], w.second) || in_loop(m_.stages[r.first], r.second))
+    if (m_.stages[w.first].in_loop(w.second) || m_.stages[r.first].in_loop(r.second))
       return refuse(s, x, "in an iterate block");
     if (writer.op != AssignOp::Set || writer.solve_operator || writer.value->type != var.type)
       return refuse(s, x, "its writer is not a plain assignment of its type");
@@ -183,7 +178,7 @@ class Inliner {
     if (writer_parts.empty() && !writer.origins.empty()) {
       std::vector<std::size_t> all(writer.origins.size());
       for (std::size_t o = 0; o < all.size(); ++o) all[o] = o;
-      writer_parts.push_back({all, zero(var.type, writer.value->loc)});
+      writer_parts.push_back({all, zero_of(var.type, m_.dim, writer.value->loc)});
     }
     for (const Statement::Without& part : writer_parts)
       fused.without.push_back({part.origins, into_reader(reader.value, part.value)});
@@ -204,12 +199,6 @@ class Inliner {
     }
     remove_variable(s, x);
     return true;
-  }
-
-  Expr zero(Type type, Location loc) const {
-    const Expr scalar = std::make_shared<Literal>(Type::Real, 0.0, loc);
-    if (type != Type::Vec) return scalar;
-    return std::make_shared<MakeVec>(std::vector<Expr>(m_.dim, scalar), loc);
   }
 
   void remove_variable(int s, int x) {

@@ -402,6 +402,11 @@ struct Stage {
   std::string name;  // of a named stage
   bool also_after_load = false;  // an init stage that also ends load (primed slots)
   std::vector<Iterate> loops;  // in order, not nested
+  // Whether statement k runs in an iterate block's loop.
+  bool in_loop(int k) const {
+    return std::any_of(loops.begin(), loops.end(),
+                       [&](const Iterate& l) { return k >= l.first && k < l.last; });
+  }
   int set;  // -1: a block of a model with several sets that assigns only observables
   std::vector<Statement> statements;
   Location loc;

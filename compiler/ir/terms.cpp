@@ -31,6 +31,12 @@ Expr join_terms(const std::vector<Term>& terms, Location loc) {
   return out;
 }
 
+Expr zero_of(Type type, int dim, Location loc) {
+  if (type != Type::Vec) return std::make_shared<Literal>(type, 0, loc);
+  return std::make_shared<MakeVec>(
+      std::vector<Expr>(dim, std::make_shared<Literal>(Type::Real, 0, loc)), loc);
+}
+
 std::vector<Statement::Without> parts_without(const Statement& st) {
   if (!st.without.empty()) return st.without;
   std::vector<Statement::Without> out;

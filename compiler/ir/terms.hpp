@@ -24,6 +24,9 @@ std::vector<Term> split_terms(const Expr& value, std::size_t n);
 // The terms joined again, as instantiation joins them.
 Expr join_terms(const std::vector<Term>& terms, Location loc);
 
+// 0 of a type: 0, or a vec of dim zeros (what is left of all-zero terms).
+Expr zero_of(Type type, int dim, Location loc);
+
 // The statement's value without some of its origins, for --profile: the
 // parts fusion recorded (Statement::without), else one per merged term;
 // none for a statement of one effect or of unsplit terms.
