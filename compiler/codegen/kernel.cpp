@@ -643,8 +643,9 @@ void ModelEmitter::refresh_lists(const Statement& st, const std::string& local,
     radius = "std::max(" + radius + ", " + radii[k] + ")";
   const std::string skin = expression(st.schedule.skin, names);
   linef("const double {} = {};", local, radius);
+  const std::string pairs = lists_pairs(lists);
   linef("if (!{0} || {0}->skin() != {1}) {0}.emplace({1}{2});", lists, skin,
-        half_lists(st) ? ", partc::VerletPairs::half" : "");
+        pairs == "partc::VerletPairs::full" ? "" : ", " + pairs);
   if (options_.profile) {
     const auto served = lists_served();
     const auto it = std::find_if(served.begin(), served.end(),

@@ -162,11 +162,12 @@ std::vector<std::pair<std::string, std::vector<const Statement*>>> ModelEmitter:
 }
 
 void ModelEmitter::plan_searches() {
-  // Statements whose lists would serve alike share them -- one set, one
-  // skin, half or full alike -- built at the largest of their radii (each
-  // sum keeps its own cutoff test): a step builds them once, and no rebuild
-  // reorders the set under another statement's lists (which would then
-  // rebuild too, every step, as two lists at two radii did).
+  // Statements with lists of one set and one skin share them, built at the
+  // largest of their radii (each sum keeps its own cutoff test) and holding
+  // half lists, full lists or both as their statements take pairs: a step
+  // builds them once, and no rebuild reorders the set under another
+  // statement's lists (which would then rebuild too, every step, as two lists
+  // at two radii did, and half and full lists of one set did).
   std::map<std::string, std::string> shared;  // that key -> the lists' member
   for (const Stage& stage : m_.stages)
     for (const Statement& st : stage.statements) {
@@ -182,7 +183,7 @@ void ModelEmitter::plan_searches() {
           });
       if (!st.schedule.skin || !neighbours) continue;
       const std::string key =
-          fmt::format("{} {} {}", st.set, source_text(st.schedule.skin->loc), half_lists(st));
+          fmt::format("{} {}", st.set, source_text(st.schedule.skin->loc));
       auto [it, fresh] = shared.insert({key, ""});
       if (fresh)
         it->second = members_.fresh((st.name.empty() ? m_.sets[st.set].name : st.name) + "_lists_");
@@ -199,6 +200,16 @@ void ModelEmitter::plan_searches() {
                                             : set + "_" + search_choice_name(search.structure)) +
                                        (n > 1 ? "_" + std::to_string(n) : "") + "_"));
   }
+}
+
+std::string ModelEmitter::lists_pairs(const std::string& lists) const {
+  bool half = false, full = false;
+  for (const auto& [member, statements] : lists_served())
+    if (member == lists)
+      for (const Statement* st : statements) (half_lists(*st) ? half : full) = true;
+  return half && full ? "partc::VerletPairs::both"
+         : half       ? "partc::VerletPairs::half"
+                      : "partc::VerletPairs::full";
 }
 
 const std::string& ModelEmitter::search_for(int sum) const {

@@ -259,6 +259,8 @@ class ModelEmitter {
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   // Each lists member and the statements it serves, in program order.
   std::vector<std::pair<std::string, std::vector<const Statement*>>> lists_served() const;
+  // The VerletPairs a lists member keeps: half, full, or both when it serves both.
+  std::string lists_pairs(const std::string& lists) const;
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
   std::vector<Kernel> kernels_;
   // Statements codegen made: calibration variants, fused passes' members.

@@ -32,6 +32,10 @@
 // (slab_schedule.hpp), which checked the slab rule for every pair it can
 // report; fewer than 4 planes, a search other than the cell list (clustered
 // or tiny sets), or runs breaking the rule mean one slab (serial pair calls).
+// VerletPairs::both keeps both from one build, for a set with sums of either
+// kind: one build and one reorder per position change, where a half and a full
+// VerletList would each rebuild (and reorder the set under the other). Each
+// view is bitwise the one a VerletList of that kind alone would give.
 //
 // Surprises:
 // - A rebuild may REORDER the set (as NeighbourSearch::build): indices taken
@@ -73,7 +77,7 @@
 
 namespace partc {
 
-enum class VerletPairs { full, half };
+enum class VerletPairs { full, half, both };
 
 template <int D>
 class VerletList {
@@ -116,8 +120,8 @@ class VerletList {
   // the last update).
   template <class F>
   void for_each_near(std::size_t i, F&& f) const {
-    assert(pairs_ == VerletPairs::full);
-    filter(i, start_[i], start_[i + 1], f);
+    assert(pairs_ != VerletPairs::half);
+    filter(full_neighbours_, i, full_start_[i], full_start_[i + 1], f);
   }
 
   // Half lists, the pair walk of slab_schedule.hpp: f(i, pairs) for every
@@ -125,16 +129,16 @@ class VerletList {
   // radius, in the deterministic parallel schedule above.
   template <class F>
   void for_each_pair(F&& f) const {
-    assert(pairs_ == VerletPairs::half);
+    assert(pairs_ != VerletPairs::full);
     slabs_.for_each_slab([&](std::size_t a) {
       for (std::size_t i = slabs_.start(a); i < slabs_.start(a + 1); ++i)
         f(i, [&](auto&& g) {
           g(i, Vec<D>::zero());
-          filter(i, start_[i], across_[i], g);
+          filter(neighbours_, i, start_[i], across_[i], g);
         });
       if (a + 1 == slabs_.count())
         for (std::size_t i = slabs_.start(0); i < slabs_.start(1); ++i)
-          f(i, [&](auto&& g) { filter(i, across_[i], start_[i + 1], g); });
+          f(i, [&](auto&& g) { filter(neighbours_, i, across_[i], start_[i + 1], g); });
     });
   }
 
@@ -143,18 +147,21 @@ class VerletList {
   void note_walk() { ++walk_count_; }
   std::size_t walk_count() const { return walk_count_; }
   double skin() const { return skin_; }
-  // List entries at the last build (within the build reach): full lists, ordered
-  // pairs (i, j) with i == j included; half lists, pairs i < j.
+  // List entries at the last build (within the build reach): pairs i < j in the
+  // half lists, ordered pairs (i, j) with i == j included in the full ones (0 for
+  // lists not kept).
   std::size_t pair_count() const { return neighbours_.size(); }
-  // For people: "Verlet lists, skin 0.3, each pair once, 1240000 pairs, 4 slabs".
+  std::size_t entry_count() const { return full_neighbours_.size(); }
+  // For people: "Verlet lists, skin 0.3, each pair once, 1240000 pairs, 4 slabs"
+  // (both: that, then "and full, 2512000 entries").
   std::string describe() const {
     std::ostringstream text;
     text << "Verlet lists, skin " << skin_;
-    if (pairs_ == VerletPairs::half)
+    if (pairs_ != VerletPairs::full)
       text << ", each pair once, " << pair_count() << " pairs, " << slab_count()
            << (slab_count() == 1 ? " slab (serial)" : " slabs");
-    else
-      text << ", " << pair_count() << " entries";
+    if (pairs_ == VerletPairs::both) text << ", and full,";
+    if (pairs_ != VerletPairs::half) text << " " << entry_count() << " entries";
     return text.str();
   }
   // Half lists: the slabs of the parallel schedule (1: serial).
@@ -168,7 +175,8 @@ class VerletList {
   // queries 1.3x faster than with a branch per candidate; Domain::minimum_image
   // instead of the shift below, 1.25x slower.
   template <class G>
-  void filter(std::size_t i, std::size_t first, std::size_t stop, G&& g) const {
+  void filter(const std::vector<std::uint32_t>& neighbours, std::size_t i, std::size_t first,
+              std::size_t stop, G&& g) const {
     constexpr int chunk = 32;
     std::uint32_t hit_j[chunk];
     Vec<D> hit_dx[chunk];
@@ -176,7 +184,7 @@ class VerletList {
     for (std::size_t k = first; k != stop;) {
       int hits = 0;
       for (int c = 0; c < chunk && k != stop; ++c, ++k) {
-        const std::uint32_t j = neighbours_[k];
+        const std::uint32_t j = neighbours[k];
         Vec<D> dx = current_[j] - pi;
         for (int d = 0; d < D; ++d) {  // as BruteForce: wrapped points differ by less than L
           const int shift =
@@ -258,10 +266,14 @@ class VerletList {
       std::copy(block_lists_[b].begin(), block_lists_[b].end(),
                 neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[first_i]));
     });
-    if (pairs_ == VerletPairs::full)
-      make_full_lists();
-    else
+    // The full lists first: make_slabs reorders half lists' entries.
+    if (pairs_ != VerletPairs::half) make_full_lists();
+    if (pairs_ == VerletPairs::full) {
+      neighbours_ = {};
+      start_ = {};
+    } else {
       make_slabs(search.pair_slabs());
+    }
     domain_ = domain;
     radius_ = radius;
     squared_radius_ = radius * radius * (1 + 1e-12);
@@ -276,13 +288,15 @@ class VerletList {
   // k itself, then k's own half list - a fixed order.
   void make_full_lists() {
     const std::size_t n = start_.size() - 1;
-    std::vector<std::size_t> full_start(n + 1, 0);
+    std::vector<std::size_t>& full_start = full_start_;
+    full_start.assign(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
       full_start[i + 1] += 1 + (start_[i + 1] - start_[i]);
       for (std::size_t k = start_[i]; k < start_[i + 1]; ++k) ++full_start[neighbours_[k] + 1];
     }
     for (std::size_t i = 0; i < n; ++i) full_start[i + 1] += full_start[i];
-    std::vector<std::uint32_t> full(full_start[n]);
+    std::vector<std::uint32_t>& full = full_neighbours_;
+    full.resize(full_start[n]);
     std::vector<std::size_t> cursor(full_start.begin(), full_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = start_[i]; k < start_[i + 1]; ++k)
@@ -293,8 +307,6 @@ class VerletList {
                 neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i + 1]),
                 full.begin() + static_cast<std::ptrdiff_t>(cursor[i]));
     }
-    neighbours_ = std::move(full);
-    start_ = std::move(full_start);
   }
 
   // The slabs of for_each_pair: the build search's (NeighbourSearch::pair_slabs),
@@ -340,8 +352,10 @@ class VerletList {
   Vec<D> length_{}, half_{};        // per dimension, for the queries' image shift
   std::vector<Vec<D>> at_build_;    // positions at the last build, after its reorder
   std::vector<Vec<D>> current_;     // wrapped positions at the last update: what queries measure
-  std::vector<std::size_t> start_;  // the list of i: neighbours_[start_[i] .. start_[i+1]-1]
+  std::vector<std::size_t> start_;  // half: i's list is neighbours_[start_[i] .. start_[i+1]-1]
   std::vector<std::uint32_t> neighbours_;
+  std::vector<std::size_t> full_start_;  // full: as start_ and neighbours_
+  std::vector<std::uint32_t> full_neighbours_;
   std::vector<std::vector<std::uint32_t>> block_lists_;  // build scratch, kept for its memory
   std::vector<char> moved_;                              // update scratch: per block
   SlabSchedule slabs_;               // half: the parallel schedule of for_each_pair

@@ -164,7 +164,7 @@ TEST_CASE("searches over float positions find what they find over the same doubl
   partc::VerletList<2> lists_d(0.01), lists_f(0.01);
   lists_d.update(unit_box, 0.03, doubles);
   lists_f.update(unit_box, 0.03, floats);
-  CHECK(lists_d.pair_count() == lists_f.pair_count());
+  CHECK(lists_d.entry_count() == lists_f.entry_count());
   for (auto& p : floats.positions()) p[0] = partc::round_inside<float>(p[0] + 0.004, 0.0, 1.0);
   CHECK_FALSE(lists_f.update(unit_box, 0.03, floats));  // 0.004 < skin / 2
   for (auto& p : floats.positions()) p[0] = partc::round_inside<float>(p[0] + 0.002, 0.0, 1.0);
