@@ -71,6 +71,7 @@ Expr Sema::check_call(const ast::Call& n, Scope& scope) {
       fail(n.callee.loc, "function " + quoted(name) + " calls itself",
            "functions are not recursive; write the repetition out");
     follow_on_if_failed(name);
+    fail_if_declared_below(n.callee);
     std::vector<std::string> known = {"vec",     "if",     "sum",         "count",
                                       "uniform", "normal", "uniform_vec", "normal_vec"};
     for (const auto& [k, unused] : kFunctions) known.push_back(k);

@@ -206,12 +206,17 @@ class Sema {
     return false;
   }
   std::set<std::string> failed_names_;  // declared with errors: later uses are follow-ons
-  std::set<std::string> failed_sets_;
+  std::set<std::string> failed_sets_;  // sets whose name clashed with another declaration
   static constexpr int kMaxExpressionDepth = 2000;
-  int expression_depth_ = 0;  // of the expression being checked   // sets whose name clashed with another declaration
+  int expression_depth_ = 0;  // of the expression being checked
   std::map<std::string, Location> globals_;
   std::map<std::string, Name> names_;
   std::map<std::string, StatementRef> statement_names_;
+  // Every param, const, function and observable the file declares, where:
+  // declarations are read in order, so a name read above its declaration is
+  // out of order, which the message says, rather than unknown.
+  std::map<std::string, Location> declarations_;
+  void fail_if_declared_below(const ast::Identifier& name) const;
 };
 
 }  // namespace partc::sema

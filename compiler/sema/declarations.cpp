@@ -10,6 +10,14 @@ namespace partc::sema {
 ir::Model Sema::run(const ast::Program& program) {
   const ast::DomainDecl& domain = collect_header(program);
   declare_builtin_observables();
+  for (const ast::Declaration& decl : program.declarations) {
+    const ast::Identifier* name = nullptr;
+    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
+    if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
+    if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
+    if (auto o = boost::get<ast::ObservableDecl>(&decl)) name = &o->name;
+    if (name) declarations_.emplace(name->name, name->loc);
+  }
   // A set is declared even when its count or a variable is wrong (see
   // declare_set); with none at all, stage blocks have nothing to update.
   for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
@@ -144,6 +152,14 @@ Type Sema::type_named(const ast::Identifier& name, bool allow_vec) {
     fail(name.loc, "unknown type " + quoted(name.name),
          allow_vec ? "types are real, int, bool and vec" : "param types are real, int and bool");
   return it->second;
+}
+
+void Sema::fail_if_declared_below(const ast::Identifier& name) const {
+  const auto it = declarations_.find(name.name);
+  if (it != declarations_.end() && !names_.count(name.name))
+    fail(name.loc,
+         quoted(name.name) + " is declared below, at " + file_.line_reference(it->second.begin),
+         "declarations are read in order: move it above this line");
 }
 
 void Sema::declare(const ast::Declaration& decl) {

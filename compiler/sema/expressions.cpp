@@ -344,6 +344,7 @@ Expr Sema::check_name(const ast::Identifier& n, Scope& scope) {
                         n.name + "[" + (scope.home ? scope.labels->front().name : "i") + "]");
   }
   follow_on_if_failed(n.name);
+  fail_if_declared_below(n);
   std::vector<std::string> known;
   for (const auto& [name, unused] : names_) known.push_back(name);
   fail(n.loc, "unknown name " + quoted(n.name) + suggestion(n.name, known));

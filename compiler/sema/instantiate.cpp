@@ -146,6 +146,9 @@ class Instantiation {
   ast::Program run();
 
  private:
+  // Where run() puts each of made_.declared: after the scene declaration of
+  // this index (-1: where the scene first needs them).
+  std::vector<int> made_declarations_after() const;
   void find_instances();
   void collect_scene_names();
   std::string qualified(const std::string& name, Location at);
@@ -651,6 +654,48 @@ ast::ScheduleBlock Instantiation::schedule(const ast::ScheduleBlock& block) cons
   return out;
 }
 
+std::vector<int> Instantiation::made_declarations_after() const {
+  // A scene name -> its declaration's index and where it is declared.
+  std::map<std::string, std::pair<std::size_t, Location>> scene_names;
+  for (std::size_t k = 0; k < scene_.declarations.size(); ++k) {
+    const ast::Declaration& decl = scene_.declarations[k];
+    const ast::Identifier* name = declared_name(decl);
+    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
+    if (auto o = boost::get<ast::ObservableDecl>(&decl)) name = &o->name;
+    if (name) scene_names.emplace(name->name, std::make_pair(k, name->loc));
+  }
+  std::vector<int> after(made_.declared.size(), -1);
+  std::map<std::string, std::size_t> made_names;  // those before the one looked at
+  for (std::size_t m = 0; m < made_.declared.size(); ++m) {
+    const ast::Declaration& decl = made_.declared[m];
+    const ast::Chain* value = nullptr;
+    std::set<std::string> own;  // a function's parameters shadow the scene's names
+    if (auto p = boost::get<ast::ParamDecl>(&decl)) value = &p->value;
+    if (auto c = boost::get<ast::ConstDecl>(&decl)) value = &c->value;
+    if (auto o = boost::get<ast::ObservableDecl>(&decl)) value = &o->value;
+    if (auto t = boost::get<ast::TimestepDecl>(&decl)) value = &t->value;
+    if (auto f = boost::get<ast::FnDecl>(&decl)) {
+      value = &f->value;
+      for (const ast::FnParam& a : f->params) own.insert(a.name.name);
+    }
+    if (!value) continue;
+    scene::for_each_name_read(*value, [&](const ast::Identifier& n) {
+      if (own.count(n.name)) return;
+      // Only a scene declaration above the reader (the use line's argument)
+      // defers it: one below is out of order, and sema says so.
+      if (auto it = scene_names.find(n.name);
+          it != scene_names.end() && it->second.second.begin < n.loc.begin)
+        after[m] = std::max(after[m], static_cast<int>(it->second.first));
+      else if (auto mine = made_names.find(n.name); mine != made_names.end())
+        after[m] = std::max(after[m], after[mine->second]);
+    });
+    const ast::Identifier* name = declared_name(decl);
+    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
+    if (name) made_names[name->name] = m;
+  }
+  return after;
+}
+
 ast::Program Instantiation::run() {
   find_instances();
   collect_scene_names();
@@ -666,11 +711,18 @@ ast::Program Instantiation::run() {
   for (std::size_t k = 0; k < scene_.declarations.size(); ++k)
     if (auto s = boost::get<ast::StageBlock>(&scene_.declarations[k]); s && s->kind == "init")
       last_init = k;
+  const std::vector<int> after = made_declarations_after();
   bool declared = false, primed = false, stepped = false;
-  auto emit_declared = [&] {
+  auto emit_declared = [&](int k) {  // those that may stand before scene declaration k
     if (declared) return;
     declared = true;
-    decls.insert(decls.end(), made_.declared.begin(), made_.declared.end());
+    for (std::size_t m = 0; m < made_.declared.size(); ++m)
+      if (after[m] < k) decls.push_back(made_.declared[m]);
+  };
+  auto emit_deferred = [&](int k) {  // those that wait for scene declaration k
+    if (!declared) return;
+    for (std::size_t m = 0; m < made_.declared.size(); ++m)
+      if (after[m] == k) decls.push_back(made_.declared[m]);
   };
   auto emit_primes = [&] {
     if (primed) return;
@@ -679,13 +731,14 @@ ast::Program Instantiation::run() {
   };
   for (std::size_t k = 0; k < scene_.declarations.size(); ++k) {
     const ast::Declaration& decl = scene_.declarations[k];
+    const int at = static_cast<int>(k);
     if (boost::get<ast::UseDecl>(&decl) || boost::get<ast::ImportDecl>(&decl)) {
-      emit_declared();
+      emit_declared(at);
       continue;
     }
     if (boost::get<ast::OrderDecl>(&decl)) continue;
     if (auto set = boost::get<ast::ParticlesDecl>(&decl)) {
-      emit_declared();
+      emit_declared(at);
       ast::ParticlesDecl copy = *set;
       for (const ast::VarDecl& v : made_.owned[set->name.name]) copy.vars.push_back(v);
       decls.emplace_back(copy);
@@ -700,9 +753,10 @@ ast::Program Instantiation::run() {
       decls.emplace_back(schedule(*s));
     else
       decls.push_back(decl);
+    emit_deferred(at);
     if (k == last_init) emit_primes();
   }
-  emit_declared();
+  emit_declared(static_cast<int>(scene_.declarations.size()));
   emit_primes();
   if (!stepped) decls.insert(decls.end(), made_.step.begin(), made_.step.end());
   return out;

@@ -11,6 +11,7 @@
 // when something kept calls them. Names are compared as written, so a
 // variable read on any set keeps the one of that name on every set: a
 // conservative answer, never a wrong one.
+#include <functional>
 #include <set>
 
 #include "sema/scene_parts.hpp"
@@ -19,21 +20,23 @@ namespace partc::scene {
 
 namespace {
 
-struct Reads {
-  std::set<std::string>& names;  // variables, observables, functions, consts
+// Calls seen(name) on every name an expression reads, as written.
+template <class F>
+struct IdentifiersRead {
+  F seen;
   void chain(const ast::Chain& c) const {
     operand(c.first);
     for (const ast::BinaryOp& op : c.rest) operand(op.rhs);
   }
   void operand(const ast::Operand& o) const { boost::apply_visitor(*this, o); }
-  void operator()(const ast::Identifier& n) const { names.insert(n.name); }
-  void operator()(const ast::Indexed& n) const { names.insert(n.var.name); }
+  void operator()(const ast::Identifier& n) const { seen(n); }
+  void operator()(const ast::Indexed& n) const { seen(n.var); }
   void operator()(const ast::Chain& n) const { chain(n); }
   void operator()(const ast::Unary& n) const { operand(n.operand); }
   void operator()(const ast::Norm& n) const { chain(n.inner); }
   void operator()(const ast::Postfix& n) const { operand(n.base); }
   void operator()(const ast::Call& n) const {
-    names.insert(n.callee.name);
+    seen(n.callee);
     for (const ast::Argument& a : n.args)
       if (auto c = boost::get<ast::Chain>(&a)) chain(*c);
   }
@@ -45,18 +48,24 @@ struct Reads {
   void operator()(const T&) const {}
 };
 
+// Variables, observables, functions and consts read, into `names`.
+auto reads_into(std::set<std::string>& names) {
+  auto insert = [&names](const ast::Identifier& n) { names.insert(n.name); };
+  return IdentifiersRead<decltype(insert)>{insert};
+}
+
 void read_statements(const std::vector<ast::BlockStatement>& body, std::set<std::string>& names);
 
 struct StatementReads {
   std::set<std::string>& names;
-  void operator()(const ast::Assignment& a) const { Reads{names}.chain(a.value); }
+  void operator()(const ast::Assignment& a) const { reads_into(names).chain(a.value); }
   void operator()(const ast::SolveStatement& s) const {
-    Reads{names}.chain(s.lhs);
-    Reads{names}.chain(s.rhs);
+    reads_into(names).chain(s.lhs);
+    reads_into(names).chain(s.rhs);
   }
   void operator()(const ast::x3::forward_ast<ast::IterateBlock>& loop) const {
-    Reads{names}.chain(loop.get().until);
-    Reads{names}.chain(loop.get().limit);
+    reads_into(names).chain(loop.get().until);
+    reads_into(names).chain(loop.get().limit);
     read_statements(loop.get().body, names);
   }
 };
@@ -66,6 +75,11 @@ void read_statements(const std::vector<ast::BlockStatement>& body, std::set<std:
 }
 
 }  // namespace
+
+void for_each_name_read(const ast::Chain& value,
+                        const std::function<void(const ast::Identifier&)>& seen) {
+  IdentifiersRead<const std::function<void(const ast::Identifier&)>&>{seen}.chain(value);
+}
 
 void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& report) {
   // Roots: what the scene itself writes, reads, outputs and schedules.
@@ -78,11 +92,11 @@ void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& repor
     if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
       for (const ast::ScheduleItem& item : schedule->items)
         if (item.subject && item.subject->member) roots.insert(item.subject->member->name);
-    if (auto set = boost::get<ast::ParticlesDecl>(&decl)) Reads{live}.chain(set->count);
-    if (auto c = boost::get<ast::ConstDecl>(&decl)) Reads{live}.chain(c->value);
-    if (auto f = boost::get<ast::FnDecl>(&decl)) Reads{live}.chain(f->value);
-    if (auto o = boost::get<ast::ObservableDecl>(&decl)) Reads{live}.chain(o->value);
-    if (auto t = boost::get<ast::TimestepDecl>(&decl)) Reads{live}.chain(t->value);
+    if (auto set = boost::get<ast::ParticlesDecl>(&decl)) reads_into(live).chain(set->count);
+    if (auto c = boost::get<ast::ConstDecl>(&decl)) reads_into(live).chain(c->value);
+    if (auto f = boost::get<ast::FnDecl>(&decl)) reads_into(live).chain(f->value);
+    if (auto o = boost::get<ast::ObservableDecl>(&decl)) reads_into(live).chain(o->value);
+    if (auto t = boost::get<ast::TimestepDecl>(&decl)) reads_into(live).chain(t->value);
   }
   for (const char* builtin : {"p", "id", "alive"}) roots.insert(builtin);
   live.insert(roots.begin(), roots.end());
@@ -109,20 +123,20 @@ void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& repor
       const std::string& target = st.target.var.name;
       if (candidates.count(target) && !live.count(target)) continue;
       kept.insert(at);
-      Reads{live}.chain(st.value);
+      reads_into(live).chain(st.value);
       changed = true;  // a statement kept: its reads may keep others
     }
     for (const auto& [set, vars] : made.owned)
       for (const ast::VarDecl& v : vars)
         if (live.count(v.name.name) && v.value) {
           const std::size_t before = live.size();
-          Reads{live}.chain(*v.value);
+          reads_into(live).chain(*v.value);
           changed |= live.size() != before;
         }
     for (const ast::Declaration& decl : made.declared)
       if (auto f = boost::get<ast::FnDecl>(&decl); f && live.count(f->name.name)) {
         const std::size_t before = live.size();
-        Reads{live}.chain(f->value);
+        reads_into(live).chain(f->value);
         changed |= live.size() != before;
       }
   }

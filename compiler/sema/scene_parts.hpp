@@ -4,6 +4,7 @@
 // instantiate.cpp (renaming, placing at slots, merging channels).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -87,6 +88,11 @@ struct Instantiated {
 // Removes from `made` every statement, variable, observable and function
 // that nothing the scene keeps needs (liveness.cpp).
 void drop_dead(const ast::Program& scene, Instantiated& made, SceneReport& report);
+
+// Calls seen(name) on every name `value` reads: variables, observables,
+// functions, consts and params, as written (liveness.cpp).
+void for_each_name_read(const ast::Chain& value,
+                        const std::function<void(const ast::Identifier&)>& seen);
 
 // The C++ name a qualified name becomes (lj.eps -> lj_eps).
 std::string mangled(const std::string& qualified);
