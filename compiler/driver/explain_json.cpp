@@ -50,6 +50,13 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
   out["folded"] = Json::array();
   for (const ir::FoldedTerm& t : c.folded)
     out["folded"].push_back({{"effect", t.effect}, {"target", t.target}, {"at", where(file, t.loc)}});
+  out["folded_conditions"] = Json::array();
+  for (const ir::FoldedCondition& f : c.folded_conditions)
+    out["folded_conditions"].push_back(
+        {{"effect", f.effect}, {"condition", f.condition}, {"at", where(file, f.loc)}});
+  out["not_emitted"] = Json::array();
+  for (const ir::DroppedDeclaration& d : c.unread)
+    out["not_emitted"].push_back({{"kind", d.kind}, {"name", d.name}, {"at", where(file, d.loc)}});
   out["fused"] = Json::array();
   for (const ir::InlinedVariable& v : c.single_use.inlined)
     out["fused"].push_back({{"set", v.set},

@@ -21,9 +21,14 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file, c.warnings);
-  // Terms a constant 0 removes (use force.gravity(const g = 0)): before
-  // fusion and the analyses, so nothing only they read is loaded or searched.
+  // Conditionals a constant decides (use sph.pressure(const kernel = 1)),
+  // then terms a constant 0 removes (use force.gravity(const g = 0)): before
+  // fusion and the analyses, so nothing only the folded code read is loaded
+  // or searched; then its functions and consts, which are not emitted.
+  const ir::DeclarationsRead read = ir::declarations_read(c.model);
+  c.folded_conditions = ir::fold_conditions(c.model);
   c.folded = ir::fold_zero_terms(c.model);
+  c.unread = ir::drop_unread_declarations(c.model, read);
   // Fusion across statements: an effect's variable set and read once per
   // step is computed where it is read. Before the analyses, which see the
   // fused statements.
@@ -130,10 +135,17 @@ std::string explain(const Compilation& c, const SourceFile& file) {
   std::string out = fmt::format("model {}: {} particle set(s), {} stage block(s)\n", c.model.name,
                                 c.model.sets.size(), c.model.stages.size());
   out += explain_scene(c.scene, file);
+  for (const ir::FoldedCondition& f : c.folded_conditions)
+    out += fmt::format("folded: {}'s {} ({}) is decided when partc runs: its condition is {}\n",
+                       f.effect.empty() ? "a statement" : "effect " + f.effect, file.slice(f.loc),
+                       file.line_reference(f.loc.begin), f.condition ? "true" : "false");
   for (const ir::FoldedTerm& t : c.folded)
     out += fmt::format("folded: {}'s term of {} ({}) is 0 whatever the data (a constant 0 factor)\n",
                        t.effect.empty() ? "a statement" : "effect " + t.effect, t.target,
                        file.line_reference(t.loc.begin));
+  for (const ir::DroppedDeclaration& d : c.unread)
+    out += fmt::format("folded: {} {} ({}) is not emitted: only folded code read it\n", d.kind,
+                       d.name, file.line_reference(d.loc.begin));
   for (const ir::InlinedVariable& v : c.single_use.inlined)
     out += fmt::format("fused: {}.{} is not stored: {} computes it where {} reads it\n", v.set,
                        v.var, file.line_reference(v.writer.begin),

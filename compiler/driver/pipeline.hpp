@@ -6,6 +6,8 @@
 #include "analysis/coincident_pairs.hpp"
 #include "ast/ast.hpp"
 #include "codegen/codegen.hpp"
+#include "ir/declarations_read.hpp"
+#include "ir/fold_conditions.hpp"
 #include "ir/fold_zero_terms.hpp"
 #include "ir/inline_single_use.hpp"
 #include "ir/ir.hpp"
@@ -20,7 +22,9 @@ struct Compilation {
   ast::Program ast;   // the model itself: a scene with its effects instantiated
   ir::Model model;
   ModelFacts facts;
+  std::vector<ir::FoldedCondition> folded_conditions;  // if(c, a, b) with c a constant
   std::vector<ir::FoldedTerm> folded;  // terms a constant 0 removed
+  std::vector<ir::DroppedDeclaration> unread;  // functions and consts only folded code read
   ir::SingleUseReport single_use;  // variables computed in their reader, not stored
   CoincidenceReport coincident;  // for warnings and --explain only
   std::vector<Diagnostic> warnings;

@@ -235,6 +235,62 @@ TEST_CASE("fold: a term with a constant 0 factor is removed", "[analysis]") {
   CHECK(folded("u[i] += zero + w[i]").size() == 1);      // a model's own statement is one term
 }
 
+namespace {
+
+// After fold_conditions and drop_unread_declarations: the step's statements,
+// the functions and consts left, and the conditionals folded (as true or false).
+struct ConditionsFolded {
+  std::vector<std::string> statements, functions, consts, conditions;
+};
+ConditionsFolded conditions_folded(const std::string& step_body) {
+  const partc::Compilation c = compile_text(
+      "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\nparam r: real = 0.1\n"
+      "const one = 1\nconst pick = one\nconst spare = 2\n"
+      "fn near(x: real) = 2 * x\nfn far(x: real) = 3 * x\nfn idle(x: real) = x\n"
+      "particles P(10) {\n  u: real = 0\n  w: real = 1\n}\n"
+      "step P {\n" + step_body + "\n}\n");
+  ConditionsFolded out;
+  for (const partc::ir::Stage& stage : c.model.stages)
+    for (const partc::ir::Statement& st : stage.statements)
+      out.statements.push_back(partc::ir::to_string(st.value, c.model, st.labels));
+  for (const partc::ir::UserFn& f : c.model.functions) out.functions.push_back(f.name);
+  for (const partc::ir::Const& k : c.model.consts) out.consts.push_back(k.name);
+  for (const partc::ir::FoldedCondition& f : c.folded_conditions)
+    out.conditions.push_back(f.condition ? "true" : "false");
+  return out;
+}
+
+using Names = std::vector<std::string>;
+
+}  // namespace
+
+TEST_CASE("fold: a conditional on a constant is the branch it chooses", "[analysis]") {
+  // Chosen: the other branch's function goes, and so do the consts only the
+  // condition read (pick, and one through pick); what nothing read stays.
+  const ConditionsFolded chosen = conditions_folded("u[i] = if(pick == 1, near(w[i]), far(w[i]))");
+  CHECK(chosen.statements == Names{"near(w[i])"});
+  CHECK(chosen.functions == Names{"near", "idle"});
+  CHECK(chosen.consts == Names{"spare"});
+  CHECK(chosen.conditions == Names{"true"});
+  CHECK(conditions_folded("u[i] = if(not (pick == 1), near(w[i]), far(w[i]))").functions ==
+        Names{"far", "idle"});
+  // A const read elsewhere too stays.
+  const ConditionsFolded read = conditions_folded("u[i] = if(pick == 1, near(w[i]), far(w[i])) + pick");
+  CHECK(read.functions == Names{"near", "idle"});
+  CHECK(read.consts == Names{"one", "pick", "spare"});
+  // Inside out: dim is a constant, w[i] > 0 is not.
+  const ConditionsFolded nested =
+      conditions_folded("u[i] = if(dim == 3, if(w[i] > 0, near(w[i]), 0), far(w[i]))");
+  CHECK(nested.statements == Names{"if((w[i] > 0), near(w[i]), 0)"});
+  CHECK(nested.conditions == Names{"true"});
+  // Not constant: a param; an int branch of a real if is left to the if to convert.
+  const ConditionsFolded param = conditions_folded("u[i] = if(r > 0, near(w[i]), far(w[i]))");
+  CHECK(param.conditions.empty());
+  CHECK(param.functions == Names{"near", "far", "idle"});
+  CHECK(param.consts == Names{"one", "pick", "spare"});
+  CHECK(conditions_folded("u[i] = if(pick == 1, 1, 2.5) * w[i]").conditions.empty());
+}
+
 // The passes statement fusion makes of a step body (over P's u and w),
 // each as its members' step indices, and the reasons of its refusals.
 struct Passes {

@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
-"""The SPH effects of stdlib/sph on a frozen 20 x 20 lattice (sph.part).
+"""The SPH effects of stdlib/sph on a frozen 20 x 20 lattice (sph.part.in).
 
-    sph_check.py PROGRAM
+    sph_check.py PROGRAM KERNEL CPP
 
-Each run takes one step with dt = 0 and writes the acceleration a, the
-density rate drho and the XSPH correction the effects computed. Here they
-are recomputed pair by pair, with this file's own Wendland C2 kernel
-(2D: W = 7 / (4 pi h^2) (1 - q/2)^4 (2q + 1)), from the fields of
-sph.part's header, and their physics is checked:
+KERNEL is the one the scene chose, wendland_c2 or cubic_spline, and CPP the
+C++ partc generated for it: its code (comments aside) names that kernel's
+functions and none of the other's. Each run takes one step with dt = 0 and
+writes the acceleration a, the density rate drho and the XSPH correction
+the effects computed. Here they are recomputed pair by pair, with this
+file's own kernels in 2D, q = r / h:
+  Wendland C2:  W = 7 / (4 pi h^2) (1 - q/2)^4 (2q + 1)  for q < 2
+  cubic spline: W = 10 / (7 pi h^2) (1 - 3/2 q^2 + 3/4 q^3)  for q < 1,
+                    10 / (7 pi h^2) (2 - q)^3 / 4  for 1 <= q < 2
+from the fields of sph.part.in's header, and their physics is checked:
 - pressure: a uniform pressure gives no force in the interior (2h from the
   edge); any pressure field conserves momentum (sum m a = 0), and in the
   interior a approaches -grad p / rho;
@@ -29,14 +34,41 @@ RHO0, CS, ALPHA, EPS = 1000.0, 20.0, 0.1, 0.5
 M = RHO0 * DX * DX
 
 
-def kernel(r):
+def wendland_c2(r):
     q = r / H
     return 7 / (4 * math.pi * H * H) * (1 - q / 2) ** 4 * (2 * q + 1) if q < 2 else 0.0
 
 
-def kernel_grad(r):  # -W'(r) / r, by differentiating W above
+def wendland_c2_grad(r):  # -W'(r) / r, by differentiating W above
     q = r / H
     return 7 / (4 * math.pi * H * H) * 5 / (H * H) * (1 - q / 2) ** 3 if q < 2 else 0.0
+
+
+def cubic_spline(r):
+    q, a = r / H, 10 / (7 * math.pi * H * H)
+    return (a * (1 - 1.5 * q * q + 0.75 * q ** 3) if q < 1 else
+            a * (2 - q) ** 3 / 4 if q < 2 else 0.0)
+
+
+def cubic_spline_grad(r):  # -W'(r) / r = -dW/dq / (h r), by differentiating W above
+    q, a = r / H, 10 / (7 * math.pi * H * H)
+    return (a * (3 * q - 2.25 * q * q) / (H * r) if q < 1 else
+            a * 0.75 * (2 - q) ** 2 / (H * r) if q < 2 else 0.0)
+
+
+KERNELS = {"wendland_c2": (wendland_c2, wendland_c2_grad),
+           "cubic_spline": (cubic_spline, cubic_spline_grad)}
+
+
+def check_code(cpp, chosen, failures):
+    """The generated C++ without its comments (which quote the modules'
+    if(kernel == 1, ...)) names the chosen kernel and not the other."""
+    code = "\n".join(line.split("//")[0] for line in Path(cpp).read_text().splitlines())
+    for name in KERNELS:
+        named = name in code
+        print(f"  the C++ names {name}: {named}")
+        if named != (name == chosen):
+            failures.append(f"the C++ of {chosen} {'names' if named else 'does not name'} {name}")
 
 
 def run(program, folder, **params):
@@ -58,8 +90,9 @@ def fields(row, pamp, ramp, vkind, p0):
     return x, y, pr, rho, v
 
 
-def reference(rows, pamp, ramp, vkind, p0):
+def reference(rows, chosen, pamp, ramp, vkind, p0):
     """a (pressure + viscosity), drho and XSPH of every particle, pair by pair."""
+    kernel, kernel_grad = KERNELS[chosen]
     f = [fields(row, pamp, ramp, vkind, p0) for row in rows]
     out = []
     for i, (xi, yi, pi, ri, vi) in enumerate(f):
@@ -85,8 +118,10 @@ def reference(rows, pamp, ramp, vkind, p0):
 
 
 def main():
-    program = sys.argv[1]
+    program, chosen, cpp = sys.argv[1:]
     failures = []
+    print(f"kernel {chosen}:")
+    check_code(cpp, chosen, failures)
 
     def check(what, got, want, tol):
         ok = abs(got - want) <= tol
@@ -107,7 +142,7 @@ def main():
         for name, params in cases.items():
             print(f"{name} ({', '.join(f'{k} = {v}' for k, v in params.items())}):")
             rows = run(program, folder, **params)
-            ref = reference(rows, params["pamp"], params["ramp"], params["vkind"], params["P0"])
+            ref = reference(rows, chosen, params["pamp"], params["ramp"], params["vkind"], params["P0"])
             scale_a = max(math.hypot(*a) for a, _, _ in ref) or 1.0
             diff = max(math.hypot(row["acc_0"] - a[0], row["acc_1"] - a[1])
                        for row, (a, _, _) in zip(rows, ref))
