@@ -182,6 +182,7 @@ struct effect_item_id : locate {};
 struct owns_item_id : locate {};
 struct access_item_id : locate {};
 struct provides_item_id : locate {};
+struct requires_item_id : locate {};
 struct slots_item_id : locate {};
 struct at_item_id : locate {};
 struct use_decl_id : locate {};
@@ -278,6 +279,10 @@ x3::rule<owns_item_id, ast::OwnsItem> const owns_item = "an owns declaration";
 x3::rule<access_item_id, ast::AccessItem> const access_item =
     "a reads, sets or contributes declaration";
 x3::rule<provides_item_id, ast::ProvidesItem> const provides_item = "a provides declaration";
+x3::rule<requires_item_id, ast::RequiresItem> const requires_item =
+    "a requirement, like requires kernel == 0 or kernel == 1";
+x3::rule<class requires_item_text_id, ast::RequiresItem> const requires_item_text =
+    "a requirement, like requires kernel == 0 or kernel == 1";
 x3::rule<slots_item_id, ast::SlotsItem> const slots_item = "a slots or prime declaration";
 x3::rule<at_item_id, ast::AtItem> const at_item = "a statement at a slot, like at force: f[i] += ...";
 x3::rule<end_of_effect_id> const end_of_effect =
@@ -552,15 +557,15 @@ auto const effect_param_def =
     x3::matches[keyword("const")] >> identifier > ':' > identifier > '=' > expression;
 
 // effect_item   = owns_item | access_item | provides_item | slots_item | at_item
-//               | const_decl | timestep_decl ;
+//               | const_decl | timestep_decl | requires_item ;
 // owns_item     = "owns" , [ "local" ] , [ "mirrored" ] , identifier , ":" , identifier ,
 //                 [ "=" , expression ] , [ "channel" ] ;
 // access_item   = ( "reads" | "sets" | "contributes" ) , identifier , ":" , identifier ;
 // provides_item = "provides" , identifier , ":" , identifier ;
 // slots_item    = ( "slots" | "prime" ) , identifier , { "," , identifier } ;
 // at_item       = "at" , identifier , ":" , assignment ;
-auto const effect_item_def =
-    owns_item | access_item | provides_item | slots_item | at_item | const_decl | timestep_decl;
+auto const effect_item_def = owns_item | access_item | provides_item | slots_item | at_item |
+                             const_decl | timestep_decl | requires_item;
 auto const owns_item_def = keyword("owns") > x3::matches[keyword("local")] >
                            x3::matches[keyword("mirrored")] > identifier > ':' >
                            identifier > -('=' > expression) > x3::matches[keyword("channel")];
@@ -571,6 +576,11 @@ auto const provides_item_def = keyword("provides") > identifier > ':' > identifi
 auto const slots_item_def =
     (keyword_string("slots") | keyword_string("prime")) > (identifier % ',');
 auto const at_item_def = keyword("at") > identifier > ':' > assignment;
+// requires_item = "requires" , expression ;
+// (Through a second rule, as timestep_decl: a one-member struct.)
+auto const set_condition = [](auto& ctx) { _val(ctx).condition = std::move(_attr(ctx)); };
+auto const requires_item_def = requires_item_text;
+auto const requires_item_text_def = (keyword("requires") > expression)[set_condition];
 
 // use_decl = "use" , dotted_name , [ "(" , [ use_argument , { "," , use_argument } ] , ")" ] ,
 //            "on" , identifier , { "," , identifier } , [ "as" , identifier ] ;
@@ -621,6 +631,7 @@ BOOST_SPIRIT_DEFINE(boundary_clause, schedule_subject, module_decl, module_decl_
                     effect_decl, end_of_effect, effect_param, effect_item, owns_item, access_item,
                     provides_item, slots_item, at_item, use_decl, use_argument, order_decl,
                     order_decl_text, import_decl, import_decl_text, dim_number, dim_number_text)
+BOOST_SPIRIT_DEFINE(requires_item, requires_item_text)
 
 // Whitespace and comments from '#' to the end of the line.
 auto const skipper = x3::space | lexeme['#' >> *(char_ - x3::eol)];

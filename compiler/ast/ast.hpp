@@ -284,8 +284,13 @@ struct AtItem : Located {
   Identifier slot;
   Assignment statement;
 };
+// requires kernel == 0 or kernel == 1: a condition on the effect's const
+// parameters, checked for each instance when partc runs.
+struct RequiresItem : Located {
+  Chain condition;
+};
 struct EffectItem : x3::variant<OwnsItem, AccessItem, ProvidesItem, SlotsItem, AtItem, ConstDecl,
-                                TimestepDecl> {
+                                TimestepDecl, RequiresItem> {
   using base_type::base_type;
   using base_type::operator=;
 };
@@ -326,8 +331,18 @@ struct Declaration
   using base_type::operator=;
 };
 
+// What an instance requires: one of its effect's requires items, made by
+// scene instantiation in the scene's names, for sema to check.
+struct Requirement {
+  Chain condition;
+  Location item;  // the requires line, in its module
+  Location use;   // the use line that made the instance
+  std::string instance;
+};
+
 struct Program {
   std::vector<Declaration> declarations;
+  std::vector<Requirement> requirements;  // none in a parsed file
 };
 
 // "pair.lj" for the parts of a dotted name.

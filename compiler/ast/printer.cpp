@@ -163,6 +163,9 @@ struct Printer {
   std::string operator()(const SlotsItem& n) const {
     return "(" + n.kind + " " + names(n.names, " ") + ") " + at(n);
   }
+  std::string operator()(const RequiresItem& n) const {
+    return "(requires " + (*this)(n.condition) + ") " + at(n);
+  }
   std::string operator()(const AtItem& n) const {
     return "(at " + n.slot.name + " " + assignment(n.statement) + ") " + at(n);
   }

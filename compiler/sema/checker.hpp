@@ -116,6 +116,8 @@ class Sema {
   void declare_builtin_observables();
   void declare_observable(const ast::ObservableDecl& decl);
   void check_timestep(const ast::TimestepDecl& decl);
+  // An instance's requires item, on the values its use line gave.
+  void check_requirement(const ast::Requirement& r);
   void check_output(const ast::OutputDecl& decl);
   void check_frames(const ast::OutputDecl& decl);
   Expr check_output_interval(const ast::Chain& every);

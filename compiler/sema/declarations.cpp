@@ -23,6 +23,8 @@ ir::Model Sema::run(const ast::Program& program) {
   for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });
   // After the consts, which its bounds may name.
   guarded([&] { check_domain(domain); });
+  // After the consts too: an instance's const parameters are consts.
+  for (const ast::Requirement& r : program.requirements) guarded([&] { check_requirement(r); });
   if (model_.sets.empty() && !has_errors())
     diagnostics_.push_back({Location{}, "a model needs at least one particle set",
                             "declare one with: particles P(N) { v: vec = 0 }"});
@@ -205,6 +207,24 @@ void Sema::declare_const(const ast::ConstDecl& decl) {
   }
   model_.consts.push_back({decl.name.name, value->type, value, decl.loc});
   names_.emplace(decl.name.name, Name{Name::Const, static_cast<int>(model_.consts.size() - 1)});
+}
+
+void Sema::check_requirement(const ast::Requirement& r) {
+  Scope scope;
+  scope.context = "a requirement";
+  const Expr condition = check(r.condition, scope);
+  const std::string text(file_.slice(r.condition.loc));
+  if (condition->type != Type::Bool)
+    fail(r.condition.loc, "a requirement is a condition, true or false, not " +
+                              a_type(condition->type));
+  const std::optional<double> holds = evaluate_constant(condition, model_);
+  if (!holds)
+    fail(r.condition.loc, "requires " + text + " reads what is set at run time",
+         "a requirement reads only the effect's const parameters and consts, which partc knows");
+  if (*holds == 0)
+    fail(r.use, "this " + r.instance + " breaks its effect's requirement: " + text,
+         "required at " + file_.line_reference(r.item.begin) +
+             "; give the parameters it names values that meet it");
 }
 
 void Sema::declare_fn(const ast::FnDecl& decl) {

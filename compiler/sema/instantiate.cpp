@@ -455,6 +455,8 @@ void Instantiation::declare_instances() {
         v.type = owns->type;
         if (owns->value) v.value = r.copy(*owns->value);
         made_.owned[inst.home()].push_back(v);
+      } else if (auto req = boost::get<ast::RequiresItem>(&item)) {
+        made_.requirements.push_back({r.copy(req->condition), req->loc, inst.use->loc, inst.name});
       }
     }
     renamers_[&inst] = r;
@@ -758,6 +760,7 @@ ast::Program Instantiation::run() {
   }
   emit_declared(static_cast<int>(scene_.declarations.size()));
   emit_primes();
+  out.requirements = made_.requirements;
   if (!stepped) decls.insert(decls.end(), made_.step.begin(), made_.step.end());
   return out;
 }

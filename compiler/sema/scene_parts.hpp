@@ -83,6 +83,7 @@ struct Instantiated {
   std::vector<ast::Declaration> declared;                  // params, consts, fns, observables
   std::map<std::string, std::vector<ast::VarDecl>> owned;  // set -> its effects' variables
   std::vector<ast::StageBlock> init, step;                 // primed slots; the step's slots
+  std::vector<ast::Requirement> requirements;              // each instance's requires items
 };
 
 // Removes from `made` every statement, variable, observable and function
