@@ -11,13 +11,19 @@
 // at the largest radius of the stretch's sums, it is built once there, where
 // per-statement radii rebuilt it at each change of radius. Sums whose radii
 // differ a lot get searches of their own when one walk at the largest
-// radius costs more than a second build (share_candidate_growth); radii known
-// only at run time share, which keeps one build per position change. The
-// plan is about speed only: the generated code still rebuilds whenever the
-// set has changed or the radius a search is asked differs from its build's.
+// radius costs more than a second build (share_candidate_growth). When the
+// ratio of two radii is known only at run time (two params), each gets a
+// group and a search, and the generated code makes the same choice with the
+// run's radii (SearchGroup::chosen_at_run_time): a search is built only if
+// some group walks it, so still at most once per position change. Sums of
+// one statement share its search whatever their radii: their loops are one
+// walk. The plan is about speed only: the generated code still rebuilds
+// whenever the set has changed or the radius a search is asked differs from
+// its build's.
 #include "analysis/search_plan.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -103,6 +109,39 @@ std::string growth_text(double ratio, int dim) {
   return fmt::format("{:.3g}^{} = {:.3g}", ratio, dim, std::pow(ratio, dim));
 }
 
+// A stretch's groups whose leaders' radii do not all compare here (their
+// rests differ) leave the choice to the run: the groups the schedule does not
+// keep apart (sharing = separate) are linked, each to all, and say the rule.
+// `first` is the index the stretch's first group will have in the plan.
+void choose_at_run_time(std::vector<SearchGroup>& groups,
+                        const std::vector<const Consumer*>& leaders, int first, int dim) {
+  std::vector<int> linked;
+  std::vector<std::string> rests;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    if (leaders[k]->sharing == ir::Sharing::Separate) continue;
+    linked.push_back(first + static_cast<int>(k));
+    if (std::find(rests.begin(), rests.end(), leaders[k]->rest) == rests.end())
+      rests.push_back(leaders[k]->rest);
+  }
+  if (rests.size() < 2) return;
+  std::vector<std::string> radii;
+  for (int index : linked) {
+    const SearchGroup& group = groups[index - first];
+    radii.push_back(group.radii.size() > 1 ? fmt::format("max({})", fmt::join(group.radii, ", "))
+                                           : group.radii.front());
+  }
+  for (std::size_t k = 0; k < linked.size(); ++k) {
+    SearchGroup& group = groups[linked[k] - first];
+    group.chosen_at_run_time = linked;
+    group.reason += (group.reason.empty() ? "" : "; ") +
+                    fmt::format(
+                        "chosen at run time, as the ratios of {} are known only there: with M "
+                        "the largest, these sums walk the search at M while (M / {})^{} <= {}, "
+                        "else this search of their own (tests/bench/bench_two_cutoffs)",
+                        fmt::join(radii, ", "), radii[k], dim, share_candidate_growth);
+  }
+}
+
 }  // namespace
 
 SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
@@ -160,9 +199,12 @@ SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neig
           break;
         }
         if (c.rest != leader.rest) {
+          const auto& mine = groups[joined].statements;
+          if (std::find(mine.begin(), mine.end(), c.statement) == mine.end())
+            continue;  // their ratio is known only at run time: decided there
           why = fmt::format(
-              "line {}'s radius {} joins {}: their ratio is known only at run time, and sharing "
-              "keeps one build per position change",
+              "line {}'s radius {} joins {}: a sum of the same statement walks this search, and "
+              "one walk serves both",
               c.line, c.radius_text, leader.radius_text);
           break;
         }
@@ -196,6 +238,7 @@ SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neig
       if (std::find(group.radii.begin(), group.radii.end(), c.radius_text) == group.radii.end())
         group.radii.push_back(c.radius_text);
     }
+    choose_at_run_time(groups, leaders, static_cast<int>(plan.groups.size()), model.dim);
     for (std::size_t slot = 0; slot < groups.size(); ++slot) {
       SearchGroup& group = groups[slot];
       auto [it, fresh] = search_of.emplace(std::make_tuple(set, structure, static_cast<int>(slot)),

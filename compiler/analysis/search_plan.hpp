@@ -34,6 +34,13 @@ struct SearchGroup {
   int built_after = -1;
   std::vector<std::string> radii;  // the distinct radii asked, as written
   std::string reason;              // shared or apart, and why
+  // The groups of its stretch whose radii's ratios are known only at run time
+  // (indices into SearchPlan::groups, this one among them, in plan order;
+  // empty when the plan is fixed here). The generated code applies the cost
+  // model there: with M the largest of their radii, a group whose radius r
+  // gives (M / r)^dim <= share_candidate_growth walks the search of the group
+  // at M, and every other group walks its own search, built at its own radius.
+  std::vector<int> chosen_at_run_time;
 };
 
 struct SearchPlan {
@@ -49,6 +56,8 @@ struct SearchPlan {
 // (30 neighbours within r, N = 1e4, each evaluation with its builds) measured
 // shared/separate at R / r = 1, 1.25: 2D 4.4/4.9 ms, 7.0/5.1 ms; 3D 8.5/10.9
 // ms, 18.7/12.5 ms, so the break-even growth lies near 1.1 (2D) and 1.3 (3D).
+// Radii whose ratio is known only at run time (two params) meet the same test
+// there (partc::search_to_walk, runtime/partc/search_sharing.hpp).
 inline constexpr double share_candidate_growth = 1.2;
 
 SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,

@@ -198,6 +198,12 @@ class Fuser {
       std::set<int> groups;
       for (const Statement* st : {&a, &b})
         for (int id : neighbour_sums(*st)) groups.insert(plan_.group_of.at(id));
+      const std::vector<int>& linked = plan_.groups[*groups.begin()].chosen_at_run_time;
+      if (groups.size() > 1 &&
+          std::includes(linked.begin(), linked.end(), groups.begin(), groups.end()))
+        return both +
+               ": which searches their sums walk is chosen at run time (search plan), and "
+               "one pass walks one search";
       if (groups.size() > 1) return both + ": their sums have searches of their own (search plan)";
     }
     return "";

@@ -339,6 +339,7 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (std::find(groups.begin(), groups.end(), group) == groups.end()) groups.push_back(group);
   }
   if (lists_.count(&st)) refresh_lists(st, locals.fresh("radius"), names);
+  walked_search_.clear();
   for (int group : groups) refresh_search(group, st, names, locals);
 
   for (const auto& [key, name] : arrays) {
@@ -522,10 +523,65 @@ static std::vector<int> group_lines(const Model& m, const SearchGroup& group) {
 // that every kernel of the stretch asks the same radius and only the first
 // builds. A search that keeps its set's order is built after the group that
 // reorders the set in the stretch, which would otherwise scramble it.
+// `walked`: this kernel walks the group's search (else it only builds it).
 void ModelEmitter::refresh_search(int group_index, const Statement& st,
-                                  const ExpressionNames& names, NameTable& locals) {
+                                  const ExpressionNames& names, NameTable& locals, bool walked) {
   const SearchGroup& group = facts_.searches.groups.at(group_index);
-  if (group.built_after >= 0) refresh_search(group.built_after, st, names, locals);
+  if (group.built_after >= 0) refresh_search(group.built_after, st, names, locals, false);
+  if (!group.chosen_at_run_time.empty())
+    return choose_search(group_index, st, names, locals, walked);
+  const std::string radius = group_radius(group, st, names);
+  const std::string local = locals.fresh("radius");
+  if (group.sums.size() > 1 || group.built_after >= 0)
+    comment(fmt::format("{}'s search, at the largest radius of its sums on line{} {}: {}",
+                        m_.sets[facts_.searches.searches.at(group.search).set].name,
+                        group.statements.size() > 1 ? "s" : "",
+                        fmt::join(group_lines(m_, group), ", "), group.reason));
+  linef("const double {} = {};", local, radius);
+  build_if_stale(group.search, local, "");
+}
+
+// A group whose radius's ratio to its stretch's other groups' is known only
+// at run time: the run's radii choose the search its sums walk (the search
+// plan's rule, partc::search_to_walk), and only that one is brought up to
+// date, so a search no group walks is never built.
+void ModelEmitter::choose_search(int group_index, const Statement& st, const ExpressionNames& names,
+                                 NameTable& locals, bool walked) {
+  const SearchGroup& group = facts_.searches.groups.at(group_index);
+  const std::vector<int>& linked = group.chosen_at_run_time;
+  comment(fmt::format("{}'s search for the sums on line{} {}: {}",
+                      m_.sets[facts_.searches.searches.at(group.search).set].name,
+                      group.statements.size() > 1 ? "s" : "",
+                      fmt::join(group_lines(m_, group), ", "), group.reason));
+  std::vector<std::string> radii;
+  for (int other : linked) {
+    radii.push_back(locals.fresh("radius"));
+    linef("const double {} = {};", radii.back(),
+          group_radius(facts_.searches.groups.at(other), st, names));
+  }
+  const std::string chosen = locals.fresh("walked");
+  linef("const std::size_t {} = partc::search_to_walk({{{}}}, {}, {}, {});", chosen,
+        fmt::join(radii, ", "),
+        std::find(linked.begin(), linked.end(), group_index) - linked.begin(), m_.dim,
+        share_candidate_growth);
+  std::string choice;
+  for (std::size_t k = 0; k < linked.size(); ++k) {
+    const int search = facts_.searches.groups.at(linked[k]).search;
+    build_if_stale(search, radii[k], fmt::format("{} == {}", chosen, k));
+    choice += k + 1 < linked.size()
+                  ? fmt::format("{} == {} ? {} : ", chosen, k, searches_.at(search))
+                  : searches_.at(search);
+  }
+  if (!walked) return;
+  const std::string local = locals.fresh("search");
+  linef("partc::NeighbourSearch<{}>& {} = {};", m_.dim, local, choice);
+  walked_search_[group_index] = local;
+}
+
+// The radius a group's search is built at: the largest of its sums' radii,
+// each in its own statement's names (this kernel's locals, or members).
+std::string ModelEmitter::group_radius(const SearchGroup& group, const Statement& st,
+                                       const ExpressionNames& names) const {
   std::vector<std::string> radii;
   for (std::size_t k = 0; k < group.sums.size(); ++k) {
     const auto [g, s] = group.statements[k];
@@ -537,24 +593,28 @@ void ModelEmitter::refresh_search(int group_index, const Statement& st,
   std::string radius = radii.front();
   for (std::size_t k = 1; k < radii.size(); ++k)
     radius = "std::max(" + radius + ", " + radii[k] + ")";
-  const PlannedSearch& plan = facts_.searches.searches.at(group.search);
-  const std::string& search = searches_.at(group.search);
+  return radius;
+}
+
+// Builds a search at the radius in the local `radius` unless its set is
+// unchanged since its last build at that radius; `chosen`, when not "", is
+// the run-time condition under which this kernel walks it.
+void ModelEmitter::build_if_stale(int search_index, const std::string& radius,
+                                  const std::string& chosen) {
+  const PlannedSearch& plan = facts_.searches.searches.at(search_index);
+  const std::string& search = searches_.at(search_index);
   const int s = plan.set;
-  const std::string local = locals.fresh("radius");
-  if (group.sums.size() > 1 || group.built_after >= 0)
-    comment(fmt::format("{}'s search, at the largest radius of its sums on line{} {}: {}",
-                        m_.sets[s].name, group.statements.size() > 1 ? "s" : "",
-                        fmt::join(group_lines(m_, group), ", "), group.reason));
-  linef("const double {} = {};", local, radius);
-  linef("if ({0}epoch_ != {1} || {0}radius_ != {2}) {{", search, epoch_[s], local);
+  const std::string stale =
+      fmt::format("{0}epoch_ != {1} || {0}radius_ != {2}", search, epoch_[s], radius);
+  linef("if ({}) {{", chosen.empty() ? stale : chosen + " && (" + stale + ")");
   if (options_.profile)
-    linef("const partc::ProfileTimer timer(profile_, profile_.search_slot({}));", group.search);
-  linef("{}.build(domain_, {}, {});", search, local, set_member_[s]);
+    linef("const partc::ProfileTimer timer(profile_, profile_.search_slot({}));", search_index);
+  linef("{}.build(domain_, {}, {});", search, radius, set_member_[s]);
   if (plan.reorders)
     linef("{}epoch_ = ++{};  // the build may reorder {}", search, epoch_[s], m_.sets[s].name);
   else
     linef("{}epoch_ = {};  // {} keeps its order", search, epoch_[s], m_.sets[s].name);
-  linef("{}radius_ = {};", search, local);
+  linef("{}radius_ = {};", search, radius);
   line("}");
 }
 

@@ -213,7 +213,10 @@ std::string ModelEmitter::lists_pairs(const std::string& lists) const {
 }
 
 const std::string& ModelEmitter::search_for(int sum) const {
-  return searches_.at(facts_.searches.groups.at(facts_.searches.group_of.at(sum)).search);
+  const int group = facts_.searches.group_of.at(sum);
+  if (auto chosen = walked_search_.find(group); chosen != walked_search_.end())
+    return chosen->second;
+  return searches_.at(facts_.searches.groups.at(group).search);
 }
 
 void ModelEmitter::header() {
@@ -248,6 +251,9 @@ void ModelEmitter::header() {
       "csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
       "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp",    "vec.hpp"};
   if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
+  if (std::any_of(facts_.searches.groups.begin(), facts_.searches.groups.end(),
+                  [](const SearchGroup& g) { return !g.chosen_at_run_time.empty(); }))
+    headers.push_back("search_sharing.hpp");
   if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) headers.push_back("faces.hpp");
   if (!lists_.empty()) headers.push_back("verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");

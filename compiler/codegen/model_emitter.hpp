@@ -106,7 +106,9 @@ class ModelEmitter {
   // ---- searches: as the search plan says (analysis/search_plan.cpp) -----
 
   void plan_searches();
-  const std::string& search_for(int sum) const;  // the search serving an Accumulate id
+  // The search an Accumulate id's sum walks: a member, or in a kernel the local
+  // that names the one chosen at run time.
+  const std::string& search_for(int sum) const;
 
   // ---- header -----------------------------------------------------------
 
@@ -200,7 +202,12 @@ class ModelEmitter {
                         NameTable& locals);
   std::string buffer_member(int s, int var, bool sink = false);
   void refresh_search(int group, const Statement& st, const ExpressionNames& names,
-                      NameTable& locals);
+                      NameTable& locals, bool walked = true);
+  void choose_search(int group, const Statement& st, const ExpressionNames& names,
+                     NameTable& locals, bool walked);
+  std::string group_radius(const SearchGroup& group, const Statement& st,
+                           const ExpressionNames& names) const;
+  void build_if_stale(int search, const std::string& radius, const std::string& chosen);
   std::string radius_expression(const SearchFact& fact, const Statement& st,
                                 const ExpressionNames& names) const;
 
@@ -256,6 +263,9 @@ class ModelEmitter {
   std::vector<std::string> left_;  // per set, with open faces: how many left
   std::map<int, std::string> compensation_;  // accumulation id -> its Neumaier error's local
   std::vector<std::string> searches_;        // per SearchPlan::searches
+  // In the kernel being emitted: each search group chosen at run time ->
+  // the local naming the search its sums walk (choose_search).
+  std::map<int, std::string> walked_search_;
   std::map<const Statement*, std::string> lists_;  // Verlet lists of statements with a skin
   // Each lists member and the statements it serves, in program order.
   std::vector<std::pair<std::string, std::vector<const Statement*>>> lists_served() const;

@@ -3,6 +3,8 @@
 // arranges them (nlohmann::json writes and escapes).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 #include "driver/pipeline.hpp"
 #include "ir/visitor.hpp"
 
@@ -79,6 +81,34 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
           {c.model.stages[r.first.first].statements[r.first.second].line,
            c.model.stages[r.second.first].statements[r.second.second].line}},
          {"reason", r.reason}});
+  // The search plan: each group of sums, its search, and whether the choice
+  // between sharing and a search of its own is made here or at run time.
+  out["search_groups"] = Json::array();
+  for (const SearchGroup& group : c.facts.searches.groups) {
+    Json lines = Json::array();
+    for (const auto& [g, k] : group.statements) {
+      const int line = c.model.stages[g].statements[k].line;
+      if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+    }
+    Json j = {{"search", group.search + 1},
+              {"set", c.model.sets[c.facts.searches.searches[group.search].set].name},
+              {"lines", lines},
+              {"radii", group.radii},
+              {"chosen", group.chosen_at_run_time.empty() ? "compile time" : "run time"},
+              {"reason", group.reason}};
+    if (!group.chosen_at_run_time.empty()) {
+      Json with = Json::array();
+      for (int other : group.chosen_at_run_time)
+        with.push_back(c.facts.searches.groups[other].search + 1);
+      j["rule"] = {{"walks", "the search at M, the largest radius of these searches' groups, "
+                             "while (M / r)^dim <= growth, with r this group's radius; else its "
+                             "own search, built at r"},
+                   {"dim", c.model.dim},
+                   {"growth", share_candidate_growth},
+                   {"searches", with}};
+    }
+    out["search_groups"].push_back(j);
+  }
   out["sets"] = Json::array();
   for (const ir::ParticleSet& set : c.model.sets) {
     Json vars = Json::array();
