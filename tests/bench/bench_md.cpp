@@ -18,7 +18,17 @@
 // hand-written O(N^2) loop over all pairs, for small N only, to show where
 // brute force beats a cell list.
 //
-// Usage: bench_md (no arguments; see .ci/bench).
+// Then, against the strongest hand-written kernels: the project owner's
+// hand-vectorised ones (floor/floor_kernels.hpp, from shared/floor), a sum
+// per particle each, on the same positions, taking turns with the others:
+// compact_simd (the cell grid, an AVX2 filter packing the real neighbours,
+// then packed arithmetic) and sell4 (a precomputed SELL-4 neighbour list,
+// pure pair arithmetic: the floor). Their structures are built before timing,
+// as the floor does. They are compiled with the floor's flags (-march=native),
+// and only where that gives AVX2.
+//
+// Usage: bench_md [--max-n N]   (sizes up to N only, for a quick check; the
+// default, the full run, is what .ci/bench runs)
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -36,6 +46,9 @@
 
 #include "timing.hpp"
 #include "md_velocity.hpp"
+#ifdef PARTC_BENCH_FLOOR
+#include "floor_kernels.hpp"
+#endif
 
 namespace {
 
@@ -52,6 +65,9 @@ constexpr double seconds_per_size_budget = 60.0;
 // Two kernels summing the same terms in a different order agree to rounding,
 // about 1e-16 times the number of neighbours; a missed or extra pair would
 // change v by a whole term, about the size of v itself.
+// The floor's kernels use a hand-written exp (about 1 ulp), a rounding's
+// worth per term more: they agree to 1.1e-14 at worst (N <= 2e4), as partc
+// does (1e-14).
 constexpr double agreement_tolerance = 1e-12;
 
 using Vec2 = std::array<double, 2>;
@@ -425,6 +441,7 @@ struct Row {
   double neighbours;
   double te_partc, te_hand, te_pairs, te_brute;  // te_brute < 0: not measured
   bool hand_is_brute_force;            // too few cells for the hand-written cell list
+  double te_compact, te_sell4;         // the floor's kernels; < 0: not measured
 };
 
 Row measure(std::size_t n, double rc) {
@@ -447,6 +464,15 @@ Row measure(std::size_t n, double rc) {
     else
       brute_pairs->update_velocities_pairs();
   };
+#ifdef PARTC_BENCH_FLOOR
+  // The floor's kernels need its cell grid (3 cells a side), and the SELL-4
+  // list its memory guard.
+  std::optional<floor_ref::VelocityUpdate> floor;
+  const bool with_sell4 = floor_ref::VelocityUpdate::sell4_fits(static_cast<int>(n), rc);
+  if (floor_ref::VelocityUpdate::applicable(rc))
+    floor.emplace(positions.x.data(), positions.y.data(), static_cast<int>(n), rc,
+                  force_strength, with_sell4);
+#endif
 
   // One update each from v = 0, compared before anything is timed. partc's
   // first step() also builds its neighbour search, which the paper leaves out of Te.
@@ -463,6 +489,18 @@ Row measure(std::size_t n, double rc) {
   require_agreement("hand-written each-pair-once",
                     cell_pairs ? cell_pairs->velocities() : brute_pairs->velocities(),
                     reference_name, v_reference, n, rc);
+#ifdef PARTC_BENCH_FLOOR
+  if (floor) {
+    floor->update_compact();
+    require_agreement("floor compact_simd", floor->velocities_compact(), reference_name,
+                      v_reference, n, rc);
+    if (with_sell4) {
+      floor->update_sell4();
+      require_agreement("floor sell4", floor->velocities_sell4(), reference_name, v_reference,
+                        n, rc);
+    }
+  }
+#endif
 
   // The kernels take turns, so that a slow spell of the (shared) machine hits
   // them alike; each timed batch follows an untimed one of the same kernel,
@@ -472,12 +510,19 @@ Row measure(std::size_t n, double rc) {
     seconds_per_update(update, batch);
     return seconds_per_update(update, batch);
   };
-  std::vector<double> partc_times, hand_times, pairs_times, brute_times;
+  std::vector<double> partc_times, hand_times, pairs_times, brute_times, compact_times,
+      sell4_times;
   for (int r = 0; r < repetitions; ++r) {
     partc_times.push_back(time_batch([&] { partc_model.step(); }));
     if (cells) hand_times.push_back(time_batch([&] { cells->update_velocities(); }));
     pairs_times.push_back(time_batch(update_pairs));
     if (brute) brute_times.push_back(time_batch([&] { brute->update_velocities(); }));
+#ifdef PARTC_BENCH_FLOOR
+    if (floor) {
+      compact_times.push_back(time_batch([&] { floor->update_compact(); }));
+      if (with_sell4) sell4_times.push_back(time_batch([&] { floor->update_sell4(); }));
+    }
+#endif
   }
 
   Row row{};
@@ -487,6 +532,8 @@ Row measure(std::size_t n, double rc) {
   row.te_hand = cells ? bench::median(hand_times) : row.te_brute;
   row.te_pairs = bench::median(pairs_times);
   row.hand_is_brute_force = !cells;
+  row.te_compact = compact_times.empty() ? -1.0 : bench::median(compact_times);
+  row.te_sell4 = sell4_times.empty() ? -1.0 : bench::median(sell4_times);
   return row;
 }
 
@@ -499,6 +546,46 @@ double expected_work(std::size_t n, double rc) {
   return updates * static_cast<double>(n) * (1.0 + neighbours);
 }
 
+#ifdef PARTC_BENCH_FLOOR
+// The same rows against the floor's kernels, from the same run: a second
+// table rather than a wider first one.
+void print_against_floor(const std::vector<std::pair<std::size_t, Row>>& rows) {
+  std::printf("\nThe same run against the strongest hand-written kernels (shared/floor):\n");
+  std::printf("%9s %11s %12s %11s %11s %12s %11s %13s %11s\n", "N", "Te_partc/s", "Te_compact/s",
+              "Te_sell4/s", "N/Te_partc", "N/Te_compact", "N/Te_sell4", "partc/compact",
+              "partc/sell4");
+  // A measured time (or N/Te), or, where negative (not measured), why not.
+  const auto cell = [](double te, const char* why) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.3e", te);
+    return std::string(te >= 0 ? text : why);
+  };
+  const auto ratio = [](double a, double b) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.2f", a / b);
+    return std::string(b >= 0 ? text : "-");
+  };
+  bool few_cells = false, over_guard = false;
+  for (const auto& [n, row] : rows) {
+    const double size = static_cast<double>(n);
+    const char* no_sell4 = row.te_compact < 0 ? "cells" : "memory";
+    few_cells |= row.te_compact < 0;
+    over_guard |= row.te_compact >= 0 && row.te_sell4 < 0;
+    std::printf("%9zu %11.3e %12s %11s %11.3e %12s %11s %13s %11s\n", n, row.te_partc,
+                cell(row.te_compact, "cells").c_str(), cell(row.te_sell4, no_sell4).c_str(),
+                size / row.te_partc, cell(size / row.te_compact, "-").c_str(),
+                cell(size / row.te_sell4, "-").c_str(),
+                ratio(row.te_partc, row.te_compact).c_str(),
+                ratio(row.te_partc, row.te_sell4).c_str());
+  }
+  if (few_cells)
+    std::printf("  cells: rc > 1/3, fewer than 3 cells a side for the floor's grid: not measured\n");
+  if (over_guard)
+    std::printf("  memory: over the floor's memory guard for neighbour lists (%.2g pairs): no SELL-4\n",
+                floor_ref::VelocityUpdate::sell4_max_pairs);
+}
+#endif
+
 void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
   std::printf("\n%s\n", cutoff.description);
   std::printf("%9s %10s %11s %11s %11s %11s %10s %11s %11s %11s\n", "N", "neighbours",
@@ -506,6 +593,7 @@ void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
               "partc/pairs", "Te_brute/s");
   bool hand_fell_back = false;
   double seconds_per_work = 0.0;  // of the last size measured
+  std::vector<std::pair<std::size_t, Row>> rows;
   for (const std::size_t n : sizes) {
     const double rc = cutoff.rc(n);
     const double estimate = seconds_per_work * expected_work(n, rc);
@@ -526,10 +614,14 @@ void run(const Cutoff& cutoff, const std::vector<std::size_t>& sizes) {
                 row.neighbours, row.te_partc, row.te_hand, row.hand_is_brute_force ? "*" : " ",
                 static_cast<double>(n) / row.te_partc, static_cast<double>(n) / row.te_hand,
                 row.te_partc / row.te_hand, row.te_pairs, row.te_partc / row.te_pairs, brute);
+    rows.emplace_back(n, row);
   }
   if (hand_fell_back)
     std::printf("  * rc > 1/3: too few cells for the 3x3 stencil; Te_hand is the brute-force kernel\n"
                 "    (and Te_pairs brute force taking each pair once)\n");
+#ifdef PARTC_BENCH_FLOOR
+  print_against_floor(rows);
+#endif
 }
 
 // Small N on static points lets the branch predictor learn a whole update's
@@ -576,23 +668,46 @@ void run_unlearnt(const std::vector<std::size_t>& sizes) {
 
 }  // namespace
 
-int main() {
-  const std::vector<std::size_t> sizes = {10,    20,    50,     100,    200,    500,
-                                          1000,  2000,  5000,   10000,  20000,  50000,
-                                          100000, 200000, 500000, 1000000};
+int main(int argc, char** argv) {
+  std::size_t max_n = 1000000;
+  if (argc == 3 && std::string(argv[1]) == "--max-n") {
+    max_n = std::strtoull(argv[2], nullptr, 10);
+  } else if (argc != 1) {
+    std::fprintf(stderr, "usage: bench_md [--max-n N]\n");
+    return 2;
+  }
+  const auto up_to_max = [max_n](std::vector<std::size_t> sizes) {
+    sizes.erase(std::remove_if(sizes.begin(), sizes.end(), [&](std::size_t n) { return n > max_n; }),
+                sizes.end());
+    return sizes;
+  };
+  const std::vector<std::size_t> sizes =
+      up_to_max({10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000,
+                 500000, 1000000});
   std::printf("md velocity update (Aboria paper): Te = mean time of one update in a batch of\n"
               "floor(1000/N)+1 (each after an untimed batch), median of %d batches; positions\n"
               "static, search built before. partc searches by brute force when a cell list would\n"
               "save a query fewer than %g pair tests. The force is odd in dx, so partc takes each\n"
               "pair once (Newton's third law); Te_hand is the paper's per-particle kernel, Te_pairs\n"
-              "the same hand-written cell list taking each pair once too.\n"
-              "Compiler: %s\n",
-              repetitions, partc::NeighbourSearch<2>::default_margin, __VERSION__);
+              "the same hand-written cell list taking each pair once too.\n",
+              repetitions, partc::NeighbourSearch<2>::default_margin);
+#ifdef PARTC_BENCH_FLOOR
+  std::printf("Each table is followed by the same run against the project owner's hand-vectorised\n"
+              "kernels (shared/floor), a sum per particle each, their structures built before\n"
+              "timing: compact_simd (cell grid, AVX2 filter, packed arithmetic) and sell4 (a\n"
+              "precomputed SELL-4 neighbour list: pure pair arithmetic, the floor). They are\n"
+              "built with -O3 -march=native -fno-math-errno -fopenmp-simd, the rest with the\n"
+              "Release flags (-O3, no -march=native).\n");
+#else
+  std::printf("The floor's hand-vectorised kernels (shared/floor) are not built here: -march=native\n"
+              "gives no AVX2 on this compiler or machine, so there is no comparison with them.\n");
+#endif
+  std::printf("Compiler: %s\n", __VERSION__);
   run({"rc = sqrt(3/N): about 3*pi neighbours per particle, N/Te should be flat",
        [](std::size_t n) { return std::sqrt(3.0 / static_cast<double>(n)); }},
       sizes);
   run({"rc = sqrt(3/500): neighbours grow with N",
        [](std::size_t) { return std::sqrt(3.0 / 500.0); }},
       sizes);
-  run_unlearnt({50, 100, 200, 500});
+  run_unlearnt(up_to_max({50, 100, 200, 500}));
 }
