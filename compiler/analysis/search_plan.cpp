@@ -28,9 +28,11 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <tuple>
 
 #include "ir/constant.hpp"
+#include "ir/printer.hpp"
 #include "ir/visitor.hpp"
 
 namespace partc {
@@ -41,8 +43,8 @@ struct Consumer {
   int sum;                        // Accumulate id
   std::pair<int, int> statement;  // (stage, statement)
   double factor;                  // the radius is factor * rest
-  std::string rest;               // as written; "" for a constant radius
-  std::string radius_text;
+  std::string rest;               // in the IR's names; "" for a constant radius
+  std::string radius_text;        // as written, for people (unless ambiguous: see below)
   ir::Sharing sharing;
   int line;
 };
@@ -84,25 +86,26 @@ std::map<std::pair<int, int>, std::vector<int>> find_stretches(const ir::Model& 
   return out;
 }
 
-// A radius as factor * rest, rest as written ("" when the radius is a
-// constant): radii with the same rest compare by their factors even when
-// rest is known only at run time (2 * h against h: a ratio of 2).
+// A radius as factor * rest, rest in the IR's names ("" when the radius is
+// a constant): radii with the same rest compare by their factors even when
+// rest is known only at run time (2 * h against h: a ratio of 2). Not the
+// text as written: two effects' `rc * rc` are lj.rc and coulomb.rc.
 std::pair<double, std::string> scaled(const ir::Expr& e, const ir::Model& model,
-                                      const std::string& source) {
+                                      const std::vector<ir::Label>& labels) {
   if (const std::optional<double> value = evaluate_constant(e, model)) return {*value, ""};
   if (const auto* b = ir::as<ir::Binary>(e)) {
     const std::optional<double> left = evaluate_constant(b->lhs, model),
                                 right = evaluate_constant(b->rhs, model);
     if (b->op == ir::BinaryOp::Mul && (left || right)) {
-      auto [factor, rest] = scaled(left ? b->rhs : b->lhs, model, source);
+      auto [factor, rest] = scaled(left ? b->rhs : b->lhs, model, labels);
       return {factor * (left ? *left : *right), rest};
     }
     if (b->op == ir::BinaryOp::Div && right) {
-      auto [factor, rest] = scaled(b->lhs, model, source);
+      auto [factor, rest] = scaled(b->lhs, model, labels);
       return {factor / *right, rest};
     }
   }
-  return {1.0, source.substr(e->loc.begin, e->loc.end - e->loc.begin)};
+  return {1.0, ir::to_string(e, model, labels)};
 }
 
 std::string growth_text(double ratio, int dim) {
@@ -163,7 +166,7 @@ SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neig
         }
         const int set = st.labels[acc->label].set;
         const Location loc = fact.radius->loc;
-        const auto [factor, rest] = scaled(fact.radius, model, source);
+        const auto [factor, rest] = scaled(fact.radius, model, st.labels);
         buckets[{set, st.schedule.search, stretches.at(at)[set]}].push_back(
             {acc->id, at, factor, rest, source.substr(loc.begin, loc.end - loc.begin),
              st.schedule.sharing, st.line});
@@ -174,6 +177,18 @@ SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neig
   std::map<std::tuple<int, ir::SearchChoice, int>, int> search_of;  // (set, structure, slot)
   for (auto& [key, consumers] : buckets) {
     const auto [set, structure, stretch] = key;
+    // Radii written alike that differ (two modules' `rc * rc`) are named
+    // as the IR names them in what people read.
+    std::set<std::string> ambiguous;
+    for (const Consumer& c : consumers)
+      for (const Consumer& other : consumers)
+        if (other.radius_text == c.radius_text && (other.rest != c.rest || other.factor != c.factor))
+          ambiguous.insert(c.radius_text);
+    for (Consumer& c : consumers)
+      if (ambiguous.count(c.radius_text))
+        c.radius_text = c.rest.empty() ? fmt::format("{:g}", c.factor)
+                        : c.factor == 1 ? c.rest
+                                        : fmt::format("{:g} * {}", c.factor, c.rest);
     // Largest radius first among those that compare (the same rest).
     std::stable_sort(consumers.begin(), consumers.end(), [](const Consumer& a, const Consumer& b) {
       return a.rest != b.rest ? a.rest < b.rest : a.factor > b.factor;
@@ -192,22 +207,21 @@ SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neig
           continue;
         }
         if (c.sharing == ir::Sharing::Separate) continue;
-        if (c.radius_text == leader.radius_text) break;
-        if (c.sharing == ir::Sharing::Shared || leader.sharing == ir::Sharing::Shared) {
-          why = fmt::format("line {}'s radius {} joins {}: the schedule says sharing = shared",
-                            c.line, c.radius_text, leader.radius_text);
-          break;
-        }
-        if (c.rest != leader.rest) {
-          const auto& mine = groups[joined].statements;
-          if (std::find(mine.begin(), mine.end(), c.statement) == mine.end())
-            continue;  // their ratio is known only at run time: decided there
+        if (c.rest == leader.rest && c.factor == leader.factor) break;  // the same radius
+        const auto& mine = groups[joined].statements;
+        if (std::find(mine.begin(), mine.end(), c.statement) != mine.end()) {
           why = fmt::format(
               "line {}'s radius {} joins {}: a sum of the same statement walks this search, and "
               "one walk serves both",
               c.line, c.radius_text, leader.radius_text);
           break;
         }
+        if (c.sharing == ir::Sharing::Shared || leader.sharing == ir::Sharing::Shared) {
+          why = fmt::format("line {}'s radius {} joins {}: the schedule says sharing = shared",
+                            c.line, c.radius_text, leader.radius_text);
+          break;
+        }
+        if (c.rest != leader.rest) continue;  // their ratio is known only at run time: decided there
         const double ratio = leader.factor / c.factor;
         if (std::pow(ratio, model.dim) <= share_candidate_growth) {
           why = fmt::format(
