@@ -538,6 +538,7 @@ void ModelEmitter::profile_api() {
   line("// buffers nobody reads: the model's state stays as it is.");
   line("void calibrate_profile([[maybe_unused]] int rounds) {");
   for (const Calibration& c : calibrations_) {
+    build_calibration_searches(c);
     std::vector<std::string> calls;
     for (const std::string& v : c.variants) calls.push_back(fmt::format("[this] {{ {}(); }}", v));
     linef("profile_.calibrate({}, rounds, {{{}}});", c.profiled, fmt::join(calls, ", "));
@@ -601,6 +602,7 @@ void ModelEmitter::profile_state() {
     searches.push_back(fmt::format("{{\"{}\", {}}}", lists, quoted(effects_of(statements))));
   linef("partc::Profile profile_{{{{{}}}, {{{}}}}};  // --profile: step kernels, then searches",
         fmt::join(kernels, ", "), fmt::join(searches, ", "));
+  calibration_search_members();
 }
 
 // How many particles of each set left through open faces (the driver's summary).
