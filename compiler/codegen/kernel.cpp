@@ -348,7 +348,7 @@ void ModelEmitter::kernel(const Kernel& k) {
       continue;
     }
     const int search = facts_.searches.groups[group].search;
-    walked[search] = locals.fresh(searches_[search].substr(0, searches_[search].size() - 1));
+    walked[search] = locals.fresh(m_.sets[facts_.searches.searches[search].set].name + "_search");
     linef("// The search calibrate_profile built at this variant's radius, if nearer than {}'s.",
           searches_[search]);
     linef("const auto& {} = {} ? *{} : {};", walked[search], own->second, own->second,
