@@ -147,7 +147,7 @@ void ModelEmitter::plan_calibration(const Kernel k) {
     if (walks_pairs(variant) && newton_pairs(variant) != newton_pairs(st)) return;
     statements.push_back(std::move(variant));
   }
-  Calibration calibration{k.profiled, {}, {}};
+  Calibration calibration{k.profiled, {}, {}, {}};
   const std::string sink = buffer_member(st.set, st.var, true);
   std::vector<Kernel> variants;
   for (std::size_t v = 0; v < statements.size(); ++v) {
@@ -162,6 +162,7 @@ void ModelEmitter::plan_calibration(const Kernel k) {
     }
     const std::string name = members_.fresh(k.name + suffix);
     variants.push_back({name, variant, k.alias, k.position, sink});
+    if (v > 0) plan_calibration_searches(variants.back(), st, parts[v - 1].origins, calibration);
     calibration.variants.push_back(name);
   }
   kernels_.insert(kernels_.end(), variants.begin(), variants.end());
@@ -308,7 +309,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   }
   const std::string count = locals.fresh("n");
   // A fused loop has one index: every label it serves is named after the first.
-  const std::vector<Loop> loops = fuse_loops(uses.accumulations, st);
+  std::vector<Loop> loops = fuse_loops(uses.accumulations, st);
   for (const Loop& l : loops)
     for (const Accumulate* acc : l.members)
       names.labels[acc->label] = names.labels[l.members.front()->label];
@@ -340,7 +341,25 @@ void ModelEmitter::kernel(const Kernel& k) {
   }
   if (lists_.count(&st)) refresh_lists(st, locals.fresh("radius"), names);
   walked_search_.clear();
-  for (int group : groups) refresh_search(group, st, names, locals);
+  std::map<int, std::string> walked;  // SearchPlan::searches index -> a calibration search
+  for (int group : groups) {
+    const auto own = k.calibration_searches.find(group);
+    if (own == k.calibration_searches.end()) {
+      refresh_search(group, st, names, locals);
+      continue;
+    }
+    const int search = facts_.searches.groups[group].search;
+    walked[search] = locals.fresh(m_.sets[facts_.searches.searches[search].set].name + "_search");
+    linef("// The search calibrate_profile built at this variant's radius, if nearer than {}'s.",
+          searches_[search]);
+    linef("const auto& {} = {} ? *{} : {};", walked[search], own->second, own->second,
+          searches_[search]);
+  }
+  // Each loop's search is named now: refresh_search may have bound a local
+  // to the one the run's radii chose.
+  for (Loop& l : loops)
+    if (l.search >= 0 && !st.schedule.skin)
+      l.searched = walked.count(l.search) ? walked.at(l.search) : search_for(l.members.front()->id);
 
   for (const auto& [key, name] : arrays) {
     const int var = key.second;  // a lambda may not capture a structured binding (C++17)
@@ -377,8 +396,7 @@ void ModelEmitter::kernel(const Kernel& k) {
   std::string pairs_once;  // names the run-time choice of a search's pair walk
   for (const Loop& l : loops) {
     if (!l.once && l.kind == SearchFact::Kind::Neighbours && k.sink.empty())
-      linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->"
-                                               : search_for(l.members.front()->id) + ".");
+      linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->" : l.searched + ".");
     if (l.once) {
       loop(l, st, names);
     } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {
@@ -386,7 +404,7 @@ void ModelEmitter::kernel(const Kernel& k) {
       for (const Accumulate* acc : l.members)
         names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
-      const std::string& search = search_for(l.members.front()->id);
+      const std::string& search = l.searched;
       pairs_once = locals.fresh("pairs_once");
       line("// Each pair once when the search walks pairs in parallel, or the set is small.");
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
@@ -731,7 +749,7 @@ std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(
       return l.set == set && l.kind == kind && l.once == once && l.search == search;
     });
     if (same == loops.end())
-      loops.push_back({set, kind, once, search, {acc}});
+      loops.push_back({set, kind, once, search, "", {acc}});
     else
       same->members.push_back(acc);
   }
@@ -825,8 +843,7 @@ void ModelEmitter::loop(const Loop& l, const Statement& st, const ExpressionName
       linef("{}->for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", lists_.at(&st), i,
             reads_j ? " " + j : "", dx.dx ? " dx" : "");
     else  // a query from the searched set itself goes by index: the search knows its cell
-      linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{",
-            search_for(l.members.front()->id),
+      linef("{}.for_each_near({}, [&](std::size_t{}, const Vec&{}) {{", l.searched,
             l.set == st.set ? i : emit_load(m_, st.set, kPosition, home_p + "[" + i + "]"),
             reads_j ? " " + j : "", dx.dx ? " dx" : "");
     out_ += body;

@@ -15,6 +15,7 @@
 
 #include "codegen/model_emitter.hpp"
 #include "ir/constant.hpp"
+#include "ir/terms.hpp"
 #include "support/diagnostics.hpp"
 
 namespace partc {
@@ -543,6 +544,7 @@ void ModelEmitter::profile_api() {
   line("// buffers nobody reads: the model's state stays as it is.");
   line("void calibrate_profile([[maybe_unused]] int rounds) {");
   for (const Calibration& c : calibrations_) {
+    build_calibration_searches(c);
     std::vector<std::string> calls;
     for (const std::string& v : c.variants) calls.push_back(fmt::format("[this] {{ {}(); }}", v));
     linef("profile_.calibrate({}, rounds, {{{}}});", c.profiled, fmt::join(calls, ", "));
@@ -581,19 +583,32 @@ void ModelEmitter::profile_state() {
                                   file_.output_line(k->st->loc.begin),
                                   fmt::join(leaves_out, ", ")));
   }
+  // A search serves the effects whose terms hold its sums, not every effect
+  // merged into their statement: a search of one effect's sums alone is
+  // that effect's (--drop removes it).
   for (std::size_t k = 0; k < searches_.size(); ++k) {
-    std::vector<const Statement*> served;
-    for (const SearchGroup& group : facts_.searches.groups)
-      if (group.search == static_cast<int>(k))
-        for (const auto& [g, s] : group.statements) served.push_back(&m_.stages[g].statements[s]);
+    std::vector<std::string> effects;
+    auto serves = [&](const std::string& effect) {
+      if (std::find(effects.begin(), effects.end(), effect) == effects.end())
+        effects.push_back(effect);
+    };
+    for (const SearchGroup& group : facts_.searches.groups) {
+      if (group.search != static_cast<int>(k)) continue;
+      for (std::size_t n = 0; n < group.sums.size(); ++n) {
+        const Statement& owner =
+            m_.stages[group.statements[n].first].statements[group.statements[n].second];
+        if (owner.origins.empty()) serves("");
+        for (std::size_t o : origins_of_sum(owner, group.sums[n])) serves(owner.origins[o].effect);
+      }
+    }
     searches.push_back(fmt::format("{{\"{} of {}\", {}}}", searches_[k],
-                                   m_.sets[facts_.searches.searches[k].set].name,
-                                   quoted(effects_of(served))));
+                                   m_.sets[facts_.searches.searches[k].set].name, quoted(effects)));
   }
   for (const auto& [lists, statements] : lists_served())
     searches.push_back(fmt::format("{{\"{}\", {}}}", lists, quoted(effects_of(statements))));
   linef("partc::Profile profile_{{{{{}}}, {{{}}}}};  // --profile: step kernels, then searches",
         fmt::join(kernels, ", "), fmt::join(searches, ", "));
+  calibration_search_members();
 }
 
 // How many particles of each set left through open faces (the driver's summary).

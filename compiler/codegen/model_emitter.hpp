@@ -162,6 +162,9 @@ class ModelEmitter {
     // its target and leaves the model's state as it was.
     std::string sink;
     int profiled = -1;  // --profile: a step kernel's index in partc::Profile
+    // --profile, a variant: search group -> the calibration search it walks
+    // instead of the group's, when calibrate_profile built one.
+    std::map<int, std::string> calibration_searches;
     // A fused pass (facts_.fusion): its later members, relabelled to name
     // their sums with st's labels (st then a copy with all of them), each
     // with its aliasing; the pass's index.
@@ -183,12 +186,28 @@ class ModelEmitter {
   bool observed_only(std::pair<int, int> position) const;
   // --profile: a kernel of several effects' terms, and its variants: whole,
   // then without some of its origins each (Profile::calibrate).
+  // A variant whose sums reach less far than its statement's walks a search
+  // of its own (codegen/calibration_search.cpp).
+  struct CalibrationSearch {
+    std::string member;  // std::optional<NeighbourSearch>: built when radius < whole
+    int group;           // the search group whose walk it stands in for
+    std::size_t part;           // the variant's index in Calibration::leaves_out
+    std::string variant;        // the variant's kernel, for people
+    std::string radius, whole;  // the variant's largest radius and the group's
+  };
   struct Calibration {
     int profiled;
     std::vector<std::string> variants;
     std::vector<std::vector<std::size_t>> leaves_out;  // per variant after the whole
+    std::vector<CalibrationSearch> searches;
   };
   void plan_calibration(const Kernel k);  // a copy: kernels_ grows
+  void plan_calibration_searches(Kernel& variant, const Statement& whole,
+                                 const std::vector<std::size_t>& leaves_out,
+                                 Calibration& calibration);
+  void build_calibration_searches(const Calibration& calibration);
+  void calibration_search_members();
+  std::string group_radius(const SearchGroup& group, const std::vector<std::size_t>& sums) const;
   void profile_api();
   void profile_state();
   void plan_kernels();
@@ -229,6 +248,7 @@ class ModelEmitter {
     SearchFact::Kind kind;
     bool once;  // the same for every i (uniform_sums.cpp): run before the particle loop
     int search;  // Neighbours: SearchPlan::searches index; sums apart are not fused
+    std::string searched;  // Neighbours without a skin: the search it walks, named by kernel()
     std::vector<const Accumulate*> members;
   };
   std::vector<Loop> fuse_loops(const std::vector<const Accumulate*>& accumulations,

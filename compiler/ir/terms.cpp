@@ -1,7 +1,10 @@
 #include "ir/terms.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <memory>
+
+#include "ir/visitor.hpp"
 
 namespace partc::ir {
 
@@ -47,6 +50,29 @@ std::vector<Statement::Without> parts_without(const Statement& st) {
     rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(o));
     out.push_back({{o}, join_terms(rest, st.value->loc)});
   }
+  return out;
+}
+
+static bool holds_sum(const Expr& value, int sum) {
+  const std::vector<const Accumulate*> sums = accumulations_in(value);
+  return std::any_of(sums.begin(), sums.end(), [&](const Accumulate* acc) { return acc->id == sum; });
+}
+
+std::vector<std::size_t> origins_of_sum(const Statement& st, int sum) {
+  const std::vector<Statement::Without> parts = parts_without(st);
+  std::vector<std::size_t> out, rest;
+  for (const Statement::Without& part : parts)
+    if (!holds_sum(part.value, sum)) out.insert(out.end(), part.origins.begin(), part.origins.end());
+  for (std::size_t o = 0; o < st.origins.size(); ++o)
+    if (std::none_of(parts.begin(), parts.end(), [&](const Statement::Without& part) {
+          return std::find(part.origins.begin(), part.origins.end(), o) != part.origins.end();
+        }))
+      rest.push_back(o);
+  if (out.empty()) out = rest;
+  if (out.empty())
+    for (std::size_t o = 0; o < st.origins.size(); ++o) out.push_back(o);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

@@ -32,4 +32,11 @@ Expr zero_of(Type type, int dim, Location loc);
 // none for a statement of one effect or of unsplit terms.
 std::vector<Statement::Without> parts_without(const Statement& st);
 
+// The origins (indices) whose terms hold the accumulation `sum` of st: those
+// of the parts without it (parts_without), else the origins no part leaves
+// out (a fused pass's reader), else all of them (a statement of one effect,
+// or of unsplit terms). For --profile: which effects a search serves, and
+// which sums a statement keeps without an effect.
+std::vector<std::size_t> origins_of_sum(const Statement& st, int sum);
+
 }  // namespace partc::ir

@@ -27,6 +27,11 @@
 //   joint row: no split is claimed.
 // - A search's builds count towards an effect's saving only when that effect
 //   alone uses the search; otherwise they are a shared row.
+// - Without an effect, a shared search may be built at a smaller radius (its
+//   far sums gone): calibrate_build times a build at either radius, and the
+//   difference, times the search's builds in the run, is that part's too. It
+//   may be negative: a cell list of many more cells than particles builds
+//   slower than one of few.
 // - Timers are opened on the thread that calls step(), never inside a
 //   parallel loop: the profile holds no locks and no global state.
 #pragma once
@@ -84,7 +89,9 @@ class Profile {
       : kernels_(std::move(kernels)),
         searches_(std::move(searches)),
         seconds_(1 + kernels_.size() + searches_.size(), 0.0),
-        calibration_(kernels_.size()) {}
+        calls_(seconds_.size(), 0),
+        calibration_(kernels_.size()),
+        build_saving_(kernels_.size()) {}
 
   std::size_t step_slot() const { return 0; }
   std::size_t kernel_slot(std::size_t k) const { return 1 + k; }
@@ -92,6 +99,9 @@ class Profile {
 
   // Adds seconds to a slot (a timer's time; tests give times directly).
   void add(std::size_t slot, double seconds) { seconds_.at(slot) += seconds; }
+  // Counts a call of a slot (a timer's: a kernel's call, a search's build).
+  void count(std::size_t slot) { ++calls_.at(slot); }
+  std::size_t calls(std::size_t slot) const { return calls_.at(slot); }
 
   // Exclusive seconds of a slot so far.
   double seconds(std::size_t slot) const { return seconds_.at(slot); }
@@ -112,21 +122,28 @@ class Profile {
     if (variants.size() != kernels_.at(kernel).leaves_out.size() + 1)
       throw std::invalid_argument("Profile::calibrate: one variant per part left out, and the whole");
     const std::vector<double> step = seconds_;
-    auto time = [](const std::function<void()>& f, int calls) {
-      const auto start = std::chrono::steady_clock::now();
-      for (int c = 0; c < calls; ++c) f();
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    };
-    const double once = std::max(time(variants.front(), 1), 1e-9);
-    const int calls = static_cast<int>(std::clamp(std::ceil(min_seconds / once), 1.0, 1e6));
-    std::vector<std::vector<double>> times(variants.size());
-    for (int r = 0; r < rounds; ++r)
-      for (std::size_t v = 0; v < variants.size(); ++v)
-        times[v].push_back(time(variants[v], calls) / calls);
-    std::vector<double> medians;
-    for (std::vector<double>& t : times) medians.push_back(median(t));
-    set_calibration(kernel, medians);
+    set_calibration(kernel, medians(rounds, variants, min_seconds));
     seconds_ = step;  // a variant's search checks are not the step's
+  }
+
+  // Times builds of one search at the whole statement's radius and at the
+  // smaller one variant leaves_out[variant] leaves (in searches of their own,
+  // so that the set's order stays as it is), as calibrate does; the
+  // difference per build, times the run's builds of search s, adds to what
+  // dropping that part saves.
+  void calibrate_build(std::size_t kernel, std::size_t variant, std::size_t s, int rounds,
+                       const std::function<void()>& at_whole,
+                       const std::function<void()>& at_variant, double min_seconds = 5e-3) {
+    const std::vector<double> t = medians(rounds, {at_whole, at_variant}, min_seconds);
+    set_build_saving(kernel, variant,
+                     static_cast<double>(calls_.at(search_slot(s))) * (t[0] - t[1]));
+  }
+
+  // As calibrate_build measured: over the run, what variant's builds save.
+  void set_build_saving(std::size_t kernel, std::size_t variant, double seconds) {
+    std::vector<double>& saving = build_saving_.at(kernel);
+    saving.resize(std::max(saving.size(), variant + 1), 0.0);
+    saving[variant] += seconds;
   }
 
   // As calibrate measured: [0] the whole statement, [1 + v] without leaves_out[v].
@@ -161,7 +178,7 @@ class Profile {
         r.seconds += t;
         r.unpredicted = "joint: not split";
       } else {
-        split(kernel, t, calibration_[k], row);
+        split(kernel, t, calibration_[k], build_saving_[k], row);
       }
     }
     for (std::size_t s = 0; s < searches_.size(); ++s) {
@@ -222,10 +239,31 @@ class Profile {
     return out;
   }
 
-  // A calibrated kernel's time t, by its parts' marginal costs.
+  // Per function, the median over rounds of its time per call, interleaved so
+  // that a loaded machine slows them alike; each timing repeats a function
+  // for at least min_seconds (a clock tick is not a cost).
+  static std::vector<double> medians(int rounds, const std::vector<std::function<void()>>& fs,
+                                     double min_seconds) {
+    auto time = [](const std::function<void()>& f, int calls) {
+      const auto start = std::chrono::steady_clock::now();
+      for (int c = 0; c < calls; ++c) f();
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    const double once = std::max(time(fs.front(), 1), 1e-9);
+    const int calls = static_cast<int>(std::clamp(std::ceil(min_seconds / once), 1.0, 1e6));
+    std::vector<std::vector<double>> times(fs.size());
+    for (int r = 0; r < rounds; ++r)
+      for (std::size_t f = 0; f < fs.size(); ++f) times[f].push_back(time(fs[f], calls) / calls);
+    std::vector<double> out;
+    for (std::vector<double>& t : times) out.push_back(median(t));
+    return out;
+  }
+
+  // A calibrated kernel's time t, by its parts' marginal costs; builds: what
+  // each part's searches at a smaller radius save (calibrate_build).
   template <class Row>
   static void split(const ProfiledKernel& kernel, double t, const std::vector<double>& c,
-                    Row& row) {
+                    const std::vector<double>& builds, Row& row) {
     std::vector<std::vector<std::size_t>> parts = kernel.leaves_out;
     std::vector<double> marginal;
     double total = 0;
@@ -254,7 +292,7 @@ class Profile {
       else if (name.find('+') != std::string::npos)
         r.unpredicted = "joint: not split";
       else if (c[0] > 0)
-        r.saving += t * marginal[p] / c[0];
+        r.saving += t * marginal[p] / c[0] + (p < builds.size() ? builds[p] : 0.0);
     }
   }
 
@@ -268,7 +306,9 @@ class Profile {
   std::vector<ProfiledKernel> kernels_;
   std::vector<ProfiledSearch> searches_;
   std::vector<double> seconds_;  // exclusive, per slot
+  std::vector<std::size_t> calls_;  // per slot, in step()
   std::vector<std::vector<double>> calibration_;
+  std::vector<std::vector<double>> build_saving_;  // per kernel, per variant after the whole
   std::size_t open_ = none;  // the slot whose timer is running, innermost
 };
 
@@ -288,6 +328,7 @@ class ProfileTimer {
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     profile_.add(slot_, s);
+    profile_.count(slot_);
     if (parent_ != Profile::none) profile_.add(parent_, -s);
   }
   ProfileTimer(const ProfileTimer&) = delete;
