@@ -94,6 +94,10 @@ void ModelEmitter::plan_calibration_searches(Kernel& variant, const Statement& w
       const auto [stage, s] = group.statements[k];
       if (kept(m_.stages[stage].statements[s], group.sums[k])) left.push_back(k);
     }
+    // No sum there that an effect left in owns (origins_of_sum places none,
+    // as in a fused statement's inlined sums): no radius to build at, so the
+    // variant walks the step's search, as one without a calibration search.
+    if (left.empty()) continue;
     const std::string radius = group_radius(group, left), whole_radius = group_radius(group, all);
     if (radius == whole_radius) continue;  // the same radii: the step's search is the variant's
     std::string member = "profile_" + searches_[group.search] + "without";
