@@ -46,4 +46,12 @@ std::string dotted(const std::vector<Identifier>& parts) {
   return out;
 }
 
+const Identifier* global_name(const Declaration& decl) {
+  if (auto p = boost::get<ParamDecl>(&decl)) return &p->name;
+  if (auto c = boost::get<ConstDecl>(&decl)) return &c->name;
+  if (auto f = boost::get<FnDecl>(&decl)) return &f->name;
+  if (auto o = boost::get<ObservableDecl>(&decl)) return &o->name;
+  return nullptr;
+}
+
 }  // namespace partc::ast

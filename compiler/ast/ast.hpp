@@ -345,6 +345,10 @@ struct Program {
   std::vector<Requirement> requirements;  // none in a parsed file
 };
 
+// The name a param, const, fn or observable declaration declares; null for
+// any other declaration.
+const Identifier* global_name(const Declaration& decl);
+
 // "pair.lj" for the parts of a dotted name.
 std::string dotted(const std::vector<Identifier>& parts);
 

@@ -10,14 +10,9 @@ namespace partc::sema {
 ir::Model Sema::run(const ast::Program& program) {
   const ast::DomainDecl& domain = collect_header(program);
   declare_builtin_observables();
-  for (const ast::Declaration& decl : program.declarations) {
-    const ast::Identifier* name = nullptr;
-    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
-    if (auto c = boost::get<ast::ConstDecl>(&decl)) name = &c->name;
-    if (auto f = boost::get<ast::FnDecl>(&decl)) name = &f->name;
-    if (auto o = boost::get<ast::ObservableDecl>(&decl)) name = &o->name;
-    if (name) declarations_.emplace(name->name, name->loc);
-  }
+  for (const ast::Declaration& decl : program.declarations)
+    if (const ast::Identifier* name = ast::global_name(decl))
+      declarations_.emplace(name->name, name->loc);
   // A set is declared even when its count or a variable is wrong (see
   // declare_set); with none at all, stage blocks have nothing to update.
   for (const ast::Declaration& decl : program.declarations) guarded([&] { declare(decl); });

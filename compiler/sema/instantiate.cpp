@@ -661,10 +661,8 @@ std::vector<int> Instantiation::made_declarations_after() const {
   std::map<std::string, std::pair<std::size_t, Location>> scene_names;
   for (std::size_t k = 0; k < scene_.declarations.size(); ++k) {
     const ast::Declaration& decl = scene_.declarations[k];
-    const ast::Identifier* name = declared_name(decl);
-    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
-    if (auto o = boost::get<ast::ObservableDecl>(&decl)) name = &o->name;
-    if (name) scene_names.emplace(name->name, std::make_pair(k, name->loc));
+    if (const ast::Identifier* name = ast::global_name(decl))
+      scene_names.emplace(name->name, std::make_pair(k, name->loc));
   }
   std::vector<int> after(made_.declared.size(), -1);
   std::map<std::string, std::size_t> made_names;  // those before the one looked at
@@ -691,9 +689,7 @@ std::vector<int> Instantiation::made_declarations_after() const {
       else if (auto mine = made_names.find(n.name); mine != made_names.end())
         after[m] = std::max(after[m], after[mine->second]);
     });
-    const ast::Identifier* name = declared_name(decl);
-    if (auto p = boost::get<ast::ParamDecl>(&decl)) name = &p->name;
-    if (name) made_names[name->name] = m;
+    if (const ast::Identifier* name = ast::global_name(decl)) made_names[name->name] = m;
   }
   return after;
 }
