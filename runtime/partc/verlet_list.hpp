@@ -275,6 +275,7 @@ class VerletList {
     for (int k = 0; k < D; ++k)
       unmarked_pairs_direct_ = unmarked_pairs_direct_ && !(build_radius + skin_ >= half_[k]);
     block_lists_.resize(blocks_of(n));
+    block_scratch_.resize(blocks_of(n));
     for_each_block(n, [&](std::size_t b, std::size_t first_i, std::size_t stop_i) {
       std::vector<std::uint32_t>& list = block_lists_[b];
       list.clear();
@@ -288,7 +289,9 @@ class VerletList {
           list.erase(std::unique(list.begin() + static_cast<std::ptrdiff_t>(first), list.end()),
                      list.end());
         }
-        mark_pairs_across_edges(i, list.begin() + static_cast<std::ptrdiff_t>(first), list.end());
+        mark_pairs_across_edges(domain, build_radius, i,
+                                list.begin() + static_cast<std::ptrdiff_t>(first), list.end(),
+                                block_scratch_[b]);
         start_[i + 1] = list.size() - first;  // a count until the prefix sum below
       }
     });
@@ -314,17 +317,35 @@ class VerletList {
 
   // i's entries: those whose pair needs a periodic image get the top bit (all
   // of them unless unmarked_pairs_direct_) and go after the others, in order.
+  // scratch: the block's, for the marked ones (stable_partition would allocate).
   template <class It>
-  void mark_pairs_across_edges(std::size_t i, It first, It stop) const {
+  void mark_pairs_across_edges(const Domain<D>& domain, double reach, std::size_t i, It first,
+                               It stop, std::vector<std::uint32_t>& scratch) const {
+    if (!unmarked_pairs_direct_) {
+      for (It e = first; e != stop; ++e) *e |= across_edge;
+      return;
+    }
+    // Farther than the build's reach from every periodic face: j's nearest
+    // image is j itself, so no pair of i is across an edge.
+    bool interior = true;
+    for (int k = 0; k < D; ++k)
+      interior = interior && (!domain.periodic[k] || (at_build_[i][k] - domain.lo[k] > reach &&
+                                                      domain.hi[k] - at_build_[i][k] > reach));
+    if (interior) return;
+    scratch.clear();
+    It kept = first;
     for (It e = first; e != stop; ++e) {
-      bool across = !unmarked_pairs_direct_;
+      bool across = false;
       for (int k = 0; k < D; ++k) {
         const double d = at_build_[*e][k] - at_build_[i][k];
         across = across || d > half_[k] || d < -half_[k];
       }
-      if (across) *e |= across_edge;
+      if (across)
+        scratch.push_back(*e | across_edge);
+      else
+        *kept++ = *e;
     }
-    std::stable_partition(first, stop, [](std::uint32_t e) { return !(e & across_edge); });
+    std::copy(scratch.begin(), scratch.end(), kept);
   }
 
   // From the half lists: the list of k is the i < k that have k (ascending i),
@@ -406,6 +427,7 @@ class VerletList {
   std::vector<std::size_t> full_start_;  // full: as start_ and neighbours_
   std::vector<std::uint32_t> full_neighbours_;
   std::vector<std::vector<std::uint32_t>> block_lists_;  // build scratch, kept for its memory
+  std::vector<std::vector<std::uint32_t>> block_scratch_;  // likewise
   std::vector<char> moved_;                              // update scratch: per block
   SlabSchedule slabs_;               // half: the parallel schedule of for_each_pair
   std::vector<std::size_t> across_;  // half: i's pairs across the periodic edge: across_[i] ..
