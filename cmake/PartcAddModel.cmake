@@ -3,7 +3,7 @@
 #   partc_add_model(<target> <file.part> [PARTC_FLAGS flag...])
 #       an executable: the generated model plus its command-line driver
 #       (PARTC_FLAGS: more of partc's options, e.g. --profile).
-#   partc_add_model_library(<target> <file.part>)
+#   partc_add_model_library(<target> <file.part> [PARTC_FLAGS flag...])
 #       an INTERFACE library whose include path holds <file>.hpp, the
 #       generated model class, for C++ code that drives the model itself.
 #
@@ -39,10 +39,11 @@ function(partc_add_model target part_file)
 endfunction()
 
 function(partc_add_model_library target part_file)
+  cmake_parse_arguments(PARSE_ARGV 2 model "" "" "PARTC_FLAGS")
   get_filename_component(stem ${part_file} NAME_WE)
   set(dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen)
   set(out ${dir}/${stem}.hpp)
-  _partc_generate(${part_file} ${out} "")
+  _partc_generate(${part_file} ${out} "${model_PARTC_FLAGS}")
   add_custom_target(${target}_generate DEPENDS ${out})
   add_library(${target} INTERFACE)
   add_dependencies(${target} ${target}_generate)

@@ -66,8 +66,9 @@ bool reads_observable(const Statement& st, int observable) {
 class Fuser {
  public:
   Fuser(const ir::Model& m, const NeighbourhoodReport& n, const PairSymmetryReport& s,
-        const SearchPlan& p, const ObservedStepReport& o, const SourceFile& file)
-      : m_(m), neighbourhoods_(n), symmetry_(s), plan_(p), observed_(o), file_(file) {}
+        const SearchPlan& p, const ObservedStepReport& o, const SourceFile& file, bool enabled)
+      : m_(m), neighbourhoods_(n), symmetry_(s), plan_(p), observed_(o), file_(file),
+        enabled_(enabled) {}
 
   StatementFusion run() {
     // The step's statements in the order step() runs them.
@@ -93,7 +94,9 @@ class Fuser {
       // b joins a's pass only if it may share it with every member.
       auto pass = out_.pass_of.find(a);
       std::string why_not;
-      if (pass == out_.pass_of.end())
+      if (!enabled_)
+        why_not = named(at(a)) + " and " + named(at(b)) + ": statement fusion is off (--no-fuse)";
+      else if (pass == out_.pass_of.end())
         why_not = refusal(a, b);
       else
         for (StatementPosition member : out_.passes[pass->second].statements)
@@ -222,6 +225,7 @@ class Fuser {
   const SearchPlan& plan_;
   const ObservedStepReport& observed_;
   const SourceFile& file_;
+  const bool enabled_;
   StatementFusion out_;
 };
 
@@ -229,8 +233,9 @@ class Fuser {
 
 StatementFusion fuse_statements(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
                                 const PairSymmetryReport& symmetry, const SearchPlan& searches,
-                                const ObservedStepReport& observed, const SourceFile& file) {
-  return Fuser(model, neighbourhoods, symmetry, searches, observed, file).run();
+                                const ObservedStepReport& observed, const SourceFile& file,
+                                bool enabled) {
+  return Fuser(model, neighbourhoods, symmetry, searches, observed, file, enabled).run();
 }
 
 }  // namespace partc

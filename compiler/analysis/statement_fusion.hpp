@@ -39,8 +39,10 @@ struct StatementFusion {
   std::map<StatementPosition, int> pass_of;  // a member -> index into passes
 };
 
+// enabled = false (partc --no-fuse): no pass, each candidate refused as such.
 StatementFusion fuse_statements(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
                                 const PairSymmetryReport& symmetry, const SearchPlan& searches,
-                                const ObservedStepReport& observed, const SourceFile& file);
+                                const ObservedStepReport& observed, const SourceFile& file,
+                                bool enabled = true);
 
 }  // namespace partc

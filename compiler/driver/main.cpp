@@ -1,7 +1,7 @@
 // partc: compiles a .part model into a C++ translation unit.
 //
 //   partc model.part -o model.cpp [--main] [--emit=ast|ir|cpp] [--explain]
-//         [--drop NAME] [--stdlib DIR]
+//         [--drop NAME] [--stdlib DIR] [--no-fuse]
 //
 // Exit status: 0 success, 1 the model has errors, 2 bad command line,
 // 3 an I/O failure or a partc bug. Output files are written whole or not at
@@ -28,7 +28,7 @@ namespace {
 
 const char* const kUsage =
     "usage: partc MODEL.part [-o OUTPUT] [--main] [--emit=ast|ir|cpp] [--explain]\n"
-    "             [--drop NAME]... [--stdlib DIR]...\n"
+    "             [--drop NAME]... [--stdlib DIR]... [--no-fuse]\n"
     "\n"
     "Compiles a particle model into one C++17 translation unit.\n"
     "\n"
@@ -45,6 +45,9 @@ const char* const kUsage =
     "                    use line were deleted (repeatable)\n"
     "  --depfile FILE    also write a make-style dependency file: the output depends on\n"
     "                    the model and every module it opened (with -o)\n"
+    "  --no-fuse         every statement a pass of its own: no fusion across statements,\n"
+    "                    to measure what it saves (the sums of one statement still share\n"
+    "                    a walk)\n"
     "  --stdlib DIR      look for modules in DIR before the standard library (the\n"
     "                    scene's own folder is searched first); repeatable\n"
     "  --version         print the version\n"
@@ -55,6 +58,7 @@ struct Options {
   std::optional<std::string> output;
   bool driver_main = false;
   bool profile = false;
+  bool fuse = true;
   bool explain = false;
   bool explain_json = false;
   std::string emit = "cpp";
@@ -78,6 +82,8 @@ Options parse_options(int argc, char** argv) {
       o.driver_main = true;
     } else if (arg == "--profile") {
       o.profile = true;
+    } else if (arg == "--no-fuse") {
+      o.fuse = false;
     } else if (arg == "--depfile") {
       if (k + 1 >= argc) throw UsageError{"--depfile needs a file name"};
       o.depfile = argv[++k];
@@ -185,7 +191,7 @@ int main(int argc, char** argv) {
     for (const std::string& dir : options.module_folders) scene.roots.push_back({dir, dir});
     scene.roots.push_back({PARTC_STDLIB_DIR, "stdlib"});
     scene.drop = options.drop;
-    const partc::Compilation c = partc::analyse(*file, scene);
+    const partc::Compilation c = partc::analyse(*file, scene, {options.fuse});
     for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
     if (options.explain)
       std::cout << (options.explain_json ? partc::explain_json(c, *file) : partc::explain(c, *file));

@@ -15,7 +15,8 @@ namespace partc {
 namespace {
 
 // The passes, in order: each fills its part of `c`.
-void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
+void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& passes,
+                Compilation& c) {
   // Text to syntax tree; syntax errors stop here, with what was expected.
   // A scene's effects are opened and instantiated: a plain model from here on.
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
@@ -51,7 +52,8 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
   // Consecutive statements one walk can serve: needs the plan and symmetry,
   // and which statements run only on observed steps (a pass runs whole or not).
   c.facts.fusion = fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry,
-                                   c.facts.searches, c.facts.observed_steps, file);
+                                   c.facts.searches, c.facts.observed_steps, file,
+                                   passes.fuse_statements);
   // Terms that are NaN or Inf for coincident particles: warnings only.
   c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
@@ -60,10 +62,10 @@ void run_passes(SourceFile& file, const SceneOptions& scene, Compilation& c) {
 
 }  // namespace
 
-Compilation analyse(SourceFile& file, const SceneOptions& scene) {
+Compilation analyse(SourceFile& file, const SceneOptions& scene, const PassOptions& passes) {
   Compilation c;
   try {
-    run_passes(file, scene, c);
+    run_passes(file, scene, passes, c);
   } catch (const CompileError& e) {
     std::vector<Diagnostic> diagnostics = e.diagnostics();
     add_scene_context(diagnostics, c.scene, file);

@@ -30,10 +30,18 @@ struct Compilation {
   std::vector<Diagnostic> warnings;
 };
 
+// Choices of the passes that change no result, only how it is computed.
+struct PassOptions {
+  // false (--no-fuse): every statement a pass of its own, to measure what
+  // fusion across statements buys; the sums of one statement still share a walk.
+  bool fuse_statements = true;
+};
+
 // Front end and analyses; throws CompileError for a bad model, and
 // std::invalid_argument for a --drop the scene cannot take. Modules a scene
 // uses are appended to `file`.
-Compilation analyse(SourceFile& file, const SceneOptions& scene = {});
+Compilation analyse(SourceFile& file, const SceneOptions& scene = {},
+                    const PassOptions& passes = {});
 
 // --explain: per statement, what was decided and why.
 std::string explain(const Compilation& c, const SourceFile& file);
