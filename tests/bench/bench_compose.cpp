@@ -257,7 +257,7 @@ const std::vector<Variant>& variants() {
       variant<ComposeOneSumLists>("partc one sum, lists", Physics::both),
       variant<ComposeFusedLists>("partc fused, lists", Physics::both),
       variant<ComposeSeparateLists>("partc separate, lists", Physics::both),
-      variant<ComposeSeparateListsUnfused>("partc separate, lists, --no-fuse", Physics::both),
+      variant<ComposeSeparateListsUnfused>("partc separate --no-fuse, lists", Physics::both),
       variant<ComposeLjLists>("partc LJ alone, lists", Physics::lj),
       variant<ComposeCoulombLists>("partc Coulomb alone, lists", Physics::coulomb),
       variant<ComposeFusedCells>("partc fused, cells", Physics::both),
@@ -398,7 +398,7 @@ void physics_check(const State& start, double rc_coul) {
       "the one-sum model's and the hand-written ones at its positions; its total energy\n"
       "(hand-written) after %d steps against the one-sum model's, relative\n",
       thermo_every);
-  std::printf("%-30s %16s %18s %18s\n", "", "f vs one sum", "f vs hand-written",
+  std::printf("%-32s %16s %18s %18s\n", "", "f vs one sum", "f vs hand-written",
               "E_tot vs one sum");
   std::vector<Vec3> one_sum_force;
   double one_sum_energy = 0.0;
@@ -423,7 +423,7 @@ void physics_check(const State& start, double rc_coul) {
     const double same_force = both ? relative_difference(force, one_sum_force) : std::nan("");
     const double same_energy =
         both ? std::abs(energy - one_sum_energy) / std::abs(one_sum_energy) : std::nan("");
-    std::printf("%-30s %16s %18s %18s\n", v.name, cell("%.2e", same_force).c_str(),
+    std::printf("%-32s %16s %18s %18s\n", v.name, cell("%.2e", same_force).c_str(),
                 cell("%.2e", reference).c_str(), cell("%.2e", same_energy).c_str());
     if (!(reference <= reference_tolerance) || (both && !(same_force <= same_physics_tolerance &&
                                                           same_energy <= same_physics_tolerance))) {
@@ -522,9 +522,9 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
   std::printf(
       "\npartc composed / two walks (separate, --no-fuse), lists: one sum %s, fused %s, separate "
       "%s (issue 10's target: <= 0.65)\n",
-      ratio("partc one sum, lists", "partc separate, lists, --no-fuse").c_str(),
-      ratio("partc fused, lists", "partc separate, lists, --no-fuse").c_str(),
-      ratio("partc separate, lists", "partc separate, lists, --no-fuse").c_str());
+      ratio("partc one sum, lists", "partc separate --no-fuse, lists").c_str(),
+      ratio("partc fused, lists", "partc separate --no-fuse, lists").c_str(),
+      ratio("partc separate, lists", "partc separate --no-fuse, lists").c_str());
   std::printf("partc composed / separate, lists: one sum %s, fused %s\n",
               ratio("partc one sum, lists", "partc separate, lists").c_str(),
               ratio("partc fused, lists", "partc separate, lists").c_str());
