@@ -4,7 +4,7 @@
 //   v[i] += c * sum(j, |dx| < rc and |dx| > 0, -exp(-|dx|) * dx / |dx|)
 //
 // of N uniform random particles in the periodic unit square, c = 1e-3, as
-// compiled by partc (md_velocity.part) and as written by hand below, in one
+// compiled by partc (md_velocity.part.in) and as written by hand below, in one
 // run, on identical positions, with identical compiler flags (one translation
 // unit). As in the paper, positions do not move and the neighbour structure is
 // built before timing starts; Te is the mean time of one update over a batch
@@ -25,7 +25,9 @@
 // then packed arithmetic) and sell4 (a precomputed SELL-4 neighbour list,
 // pure pair arithmetic: the floor). Their structures are built before timing,
 // as the floor does. They are compiled with the floor's flags (-march=native),
-// and only where that gives AVX2.
+// and only where that gives AVX2. Beside them, partc's update with Verlet
+// lists of skin 0 (md_velocity_lists: half lists at the cutoff, built by its
+// first step), the like of sell4's precomputed list.
 //
 // Usage: bench_md [--max-n N]   (sizes up to N only, for a quick check; the
 // default, the full run, is what .ci/bench runs)
@@ -46,6 +48,7 @@
 
 #include "timing.hpp"
 #include "md_velocity.hpp"
+#include "md_velocity_lists.hpp"
 #ifdef PARTC_BENCH_FLOOR
 #include "floor_kernels.hpp"
 #endif
@@ -377,7 +380,8 @@ class HandBruteForce {
 // The partc model, its particles loaded from a table built in memory: ids
 // 0..N-1 in input order, so results can be matched whatever order partc's
 // cell list sorts the particles into.
-void load_positions(MdVelocity& model, const Positions& input, double rc) {
+template <class Model>
+void load_positions(Model& model, const Positions& input, double rc) {
   model.params().N = static_cast<std::int64_t>(input.size());
   model.params().c = force_strength;
   model.params().rc = rc;
@@ -389,9 +393,10 @@ void load_positions(MdVelocity& model, const Positions& input, double rc) {
   model.load({{"P", table}});
 }
 
-std::vector<Vec2> velocities(const MdVelocity& model) {
+template <class Model>
+std::vector<Vec2> velocities(const Model& model) {
   const auto& set = model.P();
-  const auto& v = set.get<MdVelocity::P_v>();
+  const auto& v = set.template get<typename Model::P_v>();
   std::vector<Vec2> by_id(set.size());
   for (std::size_t k = 0; k < set.size(); ++k)
     by_id[static_cast<std::size_t>(set.ids()[k])] = {v[k][0], v[k][1]};
@@ -442,6 +447,7 @@ struct Row {
   double te_partc, te_hand, te_pairs, te_brute;  // te_brute < 0: not measured
   bool hand_is_brute_force;            // too few cells for the hand-written cell list
   double te_compact, te_sell4;         // the floor's kernels; < 0: not measured
+  double te_lists;                     // partc with Verlet lists (skin 0); < 0: not measured
 };
 
 Row measure(std::size_t n, double rc) {
@@ -472,6 +478,12 @@ Row measure(std::size_t n, double rc) {
   if (floor_ref::VelocityUpdate::applicable(rc))
     floor.emplace(positions.x.data(), positions.y.data(), static_cast<int>(n), rc,
                   force_strength, with_sell4);
+  // partc's lists where sell4 has its list: beside it, within its memory guard.
+  std::optional<MdVelocityLists> lists_model;
+  if (floor && with_sell4) {
+    lists_model.emplace();
+    load_positions(*lists_model, positions, rc);
+  }
 #endif
 
   // One update each from v = 0, compared before anything is timed. partc's
@@ -500,6 +512,11 @@ Row measure(std::size_t n, double rc) {
                         n, rc);
     }
   }
+  if (lists_model) {
+    lists_model->step();
+    require_agreement("partc with Verlet lists", velocities(*lists_model), reference_name,
+                      v_reference, n, rc);
+  }
 #endif
 
   // The kernels take turns, so that a slow spell of the (shared) machine hits
@@ -511,7 +528,7 @@ Row measure(std::size_t n, double rc) {
     return seconds_per_update(update, batch);
   };
   std::vector<double> partc_times, hand_times, pairs_times, brute_times, compact_times,
-      sell4_times;
+      sell4_times, lists_times;
   for (int r = 0; r < repetitions; ++r) {
     partc_times.push_back(time_batch([&] { partc_model.step(); }));
     if (cells) hand_times.push_back(time_batch([&] { cells->update_velocities(); }));
@@ -522,6 +539,7 @@ Row measure(std::size_t n, double rc) {
       compact_times.push_back(time_batch([&] { floor->update_compact(); }));
       if (with_sell4) sell4_times.push_back(time_batch([&] { floor->update_sell4(); }));
     }
+    if (lists_model) lists_times.push_back(time_batch([&] { lists_model->step(); }));
 #endif
   }
 
@@ -534,6 +552,7 @@ Row measure(std::size_t n, double rc) {
   row.hand_is_brute_force = !cells;
   row.te_compact = compact_times.empty() ? -1.0 : bench::median(compact_times);
   row.te_sell4 = sell4_times.empty() ? -1.0 : bench::median(sell4_times);
+  row.te_lists = lists_times.empty() ? -1.0 : bench::median(lists_times);
   return row;
 }
 
@@ -550,10 +569,12 @@ double expected_work(std::size_t n, double rc) {
 // The same rows against the floor's kernels, from the same run: a second
 // table rather than a wider first one.
 void print_against_floor(const std::vector<std::pair<std::size_t, Row>>& rows) {
-  std::printf("\nThe same run against the strongest hand-written kernels (shared/floor):\n");
-  std::printf("%9s %11s %12s %11s %11s %12s %11s %13s %11s\n", "N", "Te_partc/s", "Te_compact/s",
-              "Te_sell4/s", "N/Te_partc", "N/Te_compact", "N/Te_sell4", "partc/compact",
-              "partc/sell4");
+  std::printf(
+      "\nThe same run against the strongest hand-written kernels (shared/floor); lists: partc\n"
+      "with Verlet lists of skin 0 (half lists, each pair once) where sell4 has its list:\n");
+  std::printf("%9s %11s %12s %11s %11s %12s %11s %13s %11s %11s %11s\n", "N", "Te_partc/s",
+              "Te_compact/s", "Te_sell4/s", "N/Te_partc", "N/Te_compact", "N/Te_sell4",
+              "partc/compact", "partc/sell4", "N/Te_lists", "lists/sell4");
   // A measured time (or N/Te), or, where negative (not measured), why not.
   const auto cell = [](double te, const char* why) {
     char text[16];
@@ -571,12 +592,13 @@ void print_against_floor(const std::vector<std::pair<std::size_t, Row>>& rows) {
     const char* no_sell4 = row.te_compact < 0 ? "cells" : "memory";
     few_cells |= row.te_compact < 0;
     over_guard |= row.te_compact >= 0 && row.te_sell4 < 0;
-    std::printf("%9zu %11.3e %12s %11s %11.3e %12s %11s %13s %11s\n", n, row.te_partc,
+    std::printf("%9zu %11.3e %12s %11s %11.3e %12s %11s %13s %11s %11s %11s\n", n, row.te_partc,
                 cell(row.te_compact, "cells").c_str(), cell(row.te_sell4, no_sell4).c_str(),
                 size / row.te_partc, cell(size / row.te_compact, "-").c_str(),
                 cell(size / row.te_sell4, "-").c_str(),
                 ratio(row.te_partc, row.te_compact).c_str(),
-                ratio(row.te_partc, row.te_sell4).c_str());
+                ratio(row.te_partc, row.te_sell4).c_str(),
+                cell(size / row.te_lists, "-").c_str(), ratio(row.te_lists, row.te_sell4).c_str());
   }
   if (few_cells)
     std::printf("  cells: rc > 1/3, fewer than 3 cells a side for the floor's grid: not measured\n");

@@ -3,7 +3,7 @@
 // process, on identical data), taking turns so that a slow spell of the
 // machine hits both alike; the table gives both times and the speedup.
 //
-// - The md velocity update of bench_md (md_velocity.part) at N = 10^5 and
+// - The md velocity update of bench_md (md_velocity.part.in) at N = 10^5 and
 //   10^6, rc = sqrt(3/N): uniform static points, search built before timing;
 //   Te is one update, from batches of at least `min_batch_seconds` (median of
 //   `repetitions`).
