@@ -207,9 +207,9 @@ class VerletList {
       int hits = 0;
       for (int c = 0; c < chunk && k != stop; ++c, ++k) {
         const std::uint32_t entry = neighbours[k];
-        const std::uint32_t j = entry & ~across_edge;
+        const std::uint32_t j = entry & ~needs_image;
         Vec<D> dx = current_[j] - pi;
-        if (entry & across_edge)  // points differ by less than L + skin: one shift
+        if (entry & needs_image)  // points differ by less than L + skin: one shift
           for (int d = 0; d < D; ++d) {
             const int shift =
                 static_cast<int>(dx[d] > half_[d]) - static_cast<int>(dx[d] < -half_[d]);
@@ -260,7 +260,7 @@ class VerletList {
     // After the reorder: by the indices the lists use. Widened, if stored as float.
     at_build_.assign(set.positions().begin(), set.positions().end());
     const std::size_t n = at_build_.size();
-    if (n >= across_edge)
+    if (n >= needs_image)
       throw std::length_error("partc: VerletList: more than 2^31 - 1 particles");
     for (int k = 0; k < D; ++k) {  // non-periodic: a shift of 0 * 0 when |d| > infinity, i.e. never
       length_[k] = domain.periodic[k] ? domain.hi[k] - domain.lo[k] : 0.0;
@@ -289,7 +289,7 @@ class VerletList {
           list.erase(std::unique(list.begin() + static_cast<std::ptrdiff_t>(first), list.end()),
                      list.end());
         }
-        mark_pairs_across_edges(domain, build_radius, i,
+        mark_pairs_needing_images(domain, build_radius, i,
                                 list.begin() + static_cast<std::ptrdiff_t>(first), list.end(),
                                 block_scratch_[b]);
         start_[i + 1] = list.size() - first;  // a count until the prefix sum below
@@ -319,10 +319,10 @@ class VerletList {
   // of them unless unmarked_pairs_direct_) and go after the others, in order.
   // scratch: the block's, for the marked ones (stable_partition would allocate).
   template <class It>
-  void mark_pairs_across_edges(const Domain<D>& domain, double reach, std::size_t i, It first,
+  void mark_pairs_needing_images(const Domain<D>& domain, double reach, std::size_t i, It first,
                                It stop, std::vector<std::uint32_t>& scratch) const {
     if (!unmarked_pairs_direct_) {
-      for (It e = first; e != stop; ++e) *e |= across_edge;
+      for (It e = first; e != stop; ++e) *e |= needs_image;
       return;
     }
     // Farther than the build's reach from every periodic face: j's nearest
@@ -341,7 +341,7 @@ class VerletList {
         across = across || d > half_[k] || d < -half_[k];
       }
       if (across)
-        scratch.push_back(*e | across_edge);
+        scratch.push_back(*e | needs_image);
       else
         *kept++ = *e;
     }
@@ -357,7 +357,7 @@ class VerletList {
     for (std::size_t i = 0; i < n; ++i) {
       full_start[i + 1] += 1 + (start_[i + 1] - start_[i]);
       for (std::size_t k = start_[i]; k < start_[i + 1]; ++k)
-        ++full_start[(neighbours_[k] & ~across_edge) + 1];
+        ++full_start[(neighbours_[k] & ~needs_image) + 1];
     }
     for (std::size_t i = 0; i < n; ++i) full_start[i + 1] += full_start[i];
     std::vector<std::uint32_t>& full = full_neighbours_;
@@ -365,8 +365,8 @@ class VerletList {
     std::vector<std::size_t> cursor(full_start.begin(), full_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = start_[i]; k < start_[i + 1]; ++k)
-        full[cursor[neighbours_[k] & ~across_edge]++] =
-            static_cast<std::uint32_t>(i) | (neighbours_[k] & across_edge);
+        full[cursor[neighbours_[k] & ~needs_image]++] =
+            static_cast<std::uint32_t>(i) | (neighbours_[k] & needs_image);
     for (std::size_t i = 0; i < n; ++i) {
       full[cursor[i]++] = static_cast<std::uint32_t>(i);
       std::copy(neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]),
@@ -387,8 +387,8 @@ class VerletList {
     for (std::size_t i = slabs.start(0); i < slabs.start(1); ++i) {
       const auto first = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i]);
       const auto stop = neighbours_.begin() + static_cast<std::ptrdiff_t>(start_[i + 1]);
-      const auto across =
-          std::stable_partition(first, stop, [&](std::uint32_t e) { return (e & ~across_edge) < edge; });
+      const auto across = std::stable_partition(
+          first, stop, [&](std::uint32_t e) { return (e & ~needs_image) < edge; });
       across_[i] = start_[i] + static_cast<std::size_t>(across - first);
     }
   }
@@ -409,7 +409,7 @@ class VerletList {
   }
 
   // An entry's top bit: its pair needs the periodic minimum image.
-  static constexpr std::uint32_t across_edge = std::uint32_t{1} << 31;
+  static constexpr std::uint32_t needs_image = std::uint32_t{1} << 31;
 
   double skin_;
   VerletPairs pairs_;
@@ -421,7 +421,7 @@ class VerletList {
   double squared_radius_ = 0.0;
   Vec<D> length_{}, half_{};        // per dimension, for the queries' image shift
   std::vector<Vec<D>> at_build_;    // positions at the last build, after its reorder
-  std::vector<Vec<D>> current_;     // positions at the last update, as the top says: what queries measure
+  std::vector<Vec<D>> current_;     // positions at the last update (see the top): walked
   std::vector<std::size_t> start_;  // half: i's list is neighbours_[start_[i] .. start_[i+1]-1]
   std::vector<std::uint32_t> neighbours_;
   std::vector<std::size_t> full_start_;  // full: as start_ and neighbours_

@@ -484,7 +484,8 @@ void cutoff_section(double rc_coul, const std::vector<LammpsStyle>& lammps) {
     }
     rows.push_back({v.name, 1e3 * t.loop_seconds / steps,
                     1e3 * (t.loop_seconds - t.first_step_seconds) / (steps - 1),
-                    fmt_walks(static_cast<double>(walks) / steps), std::to_string(t.searches.size()),
+                    fmt_walks(static_cast<double>(walks) / steps),
+                    std::to_string(t.searches.size()),
                     std::to_string(builds)});
     per_step[v.name] = rows.back().per_step_ms;
   }
