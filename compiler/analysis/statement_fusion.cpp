@@ -94,9 +94,7 @@ class Fuser {
       // b joins a's pass only if it may share it with every member.
       auto pass = out_.pass_of.find(a);
       std::string why_not;
-      if (!enabled_)
-        why_not = named(at(a)) + " and " + named(at(b)) + ": statement fusion is off (--no-fuse)";
-      else if (pass == out_.pass_of.end())
+      if (pass == out_.pass_of.end())
         why_not = refusal(a, b);
       else
         for (StatementPosition member : out_.passes[pass->second].statements)
@@ -179,6 +177,7 @@ class Fuser {
     const Statement& a = at(pa);
     const Statement& b = at(pb);
     const std::string both = named(a) + " and " + named(b);
+    if (!enabled_) return both + ": statement fusion is off (--no-fuse)";
     if (in_loop(pa) || in_loop(pb)) return both + ": an iterate block runs its statements alone";
     for (const Statement* st : {&a, &b})
       if (st->var == ir::kPosition || st->var == ir::kAlive || st->solve_operator)

@@ -219,7 +219,8 @@ TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion
       // Per component: a random walk the skin outlasts for a few steps at a time.
       std::uniform_real_distribution<double> step(-0.15 * c.skin, 0.15 * c.skin);
       const int steps = 40;
-      std::size_t rebuilds = 0, pairs_across = 0;
+      std::size_t rebuilds = 0, pairs_across = 0, pairs_with_crossed = 0;
+      std::vector<Vec<D>> built_at;  // by id: positions at the last rebuild
       for (int s = 0; s < steps; ++s) {
         INFO("step " << s);
         const std::vector<std::int64_t> ids_before = set.ids();
@@ -227,19 +228,37 @@ TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion
         rebuilds += rebuilt;
         CHECK(list.rebuild_count() == rebuilds);
         if (!rebuilt) CHECK(set.ids() == ids_before);  // only a rebuild may reorder
+        if (rebuilt) {
+          built_at.resize(set.size());
+          for (std::size_t k = 0; k < set.size(); ++k)
+            built_at[static_cast<std::size_t>(set.ids()[k])] = set.positions()[k];
+        }
         check_exact(list, domain, c.radius, set);
         // Positions in the box: dx is Domain::minimum_image's, bit for bit, but for
-        // particles that crossed a periodic edge since the build, a few ulps of
-        // the box length from it (see the header).
-        std::size_t far = 0, across_edge = 0;
+        // a particle that crossed a periodic edge since the build (moved by over
+        // half a box length, as wrapped), a few ulps of the box length from it.
+        const auto crossed = [&](std::size_t k) {
+          const auto id = static_cast<std::size_t>(set.ids()[k]);
+          const Vec<D> moved = set.positions()[k] - built_at[id];
+          for (int d = 0; d < D; ++d)
+            if (std::abs(moved[d]) > 0.5 * (domain.hi[d] - domain.lo[d])) return true;
+          return false;
+        };
+        std::size_t inexact = 0, far = 0, across_edge = 0;
         const double ulps = 4 * std::numeric_limits<double>::epsilon() * 3.5;  // L <= 3.5
         for (std::size_t i = 0; i < set.size(); ++i)
           list.for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
             const Vec<D> raw = set.positions()[j] - set.positions()[i];
             const Vec<D> nearest = domain.minimum_image(raw);
-            far += !(squared_norm(dx - nearest) <= ulps * ulps);
             across_edge += raw != nearest;
+            if (crossed(i) || crossed(j)) {
+              ++pairs_with_crossed;
+              far += !(squared_norm(dx - nearest) <= ulps * ulps);
+            } else {
+              inexact += dx != nearest;
+            }
           });
+        CHECK(inexact == 0);
         CHECK(far == 0);
         pairs_across += across_edge;
         for (auto& p : set.positions()) {
@@ -247,9 +266,13 @@ TEMPLATE_TEST_CASE("queries match the reference over many steps of random motion
           p = domain.wrap(p);  // as generated code does after a move
         }
       }
-      // Both kinds of step happened: lists were reused and rebuilt.
+      // Both kinds of step happened: lists were reused and rebuilt; and with
+      // periodic edges, pairs across them and particles that crossed one.
       CHECK(rebuilds >= 2);
-      if (periodicity != Periodicity::none) CHECK(pairs_across > 0);
+      if (periodicity != Periodicity::none) {
+        CHECK(pairs_across > 0);
+        CHECK(pairs_with_crossed > 0);
+      }
       CHECK(rebuilds <= steps / 2);
     }
   }
