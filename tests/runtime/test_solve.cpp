@@ -145,6 +145,31 @@ TEST_CASE("solve_dense: LU recovers a known solution, with a sound rcond", "[sol
                                   "residual \\d\\.\\de-1\\d, [0-9.e-]+ s"));
 }
 
+TEST_CASE("solve_dense: an ill-conditioned matrix keeps LU's answer and says what it costs",
+          "[solve][dense]") {
+  // Hilbert's matrix of size 8: condition 3.4e10 (1-norm), below the warning;
+  // size 10: 3.5e13, above it and still far from singular to working precision.
+  for (const Index n : {8, 10}) {
+    const MatrixXd H = hilbert(n);
+    const VectorXd b = H * VectorXd::Ones(n);
+    const partc::SolveResult r = partc::solve_dense(H, b, {"w"});
+    INFO("n = " << n << ", exact condition " << 1 / exact_rcond_1(H));
+    CHECK(r.method == "dense LU");
+    REQUIRE(r.rcond);
+    if (n == 8) {
+      CHECK(r.warning.empty());
+      continue;
+    }
+    CHECK(1 / *r.rcond > 1e12);
+    CHECK_THAT(r.warning, Matches("solve w: ill-conditioned: condition estimate \\d\\.\\de\\+13 > "
+                                  "1\\.0e\\+12, so about 13 of 16 digits of w may be rounding "
+                                  "noise, however small the residual; .*"));
+    // The digits said are lost: x = 1 comes back with an error near eps / rcond.
+    CHECK(relative_error(r.x, VectorXd::Ones(n)) > 1e-6);
+    CHECK(r.residual < 100 * eps);
+  }
+}
+
 TEST_CASE("solve_dense: a Hilbert matrix of size 12 takes the fallback and warns",
           "[solve][dense]") {
   const Index n = 12;
