@@ -76,7 +76,8 @@ Value target(const ir::Statement& st) {
 // What a statement reads, its target too when it adds to it.
 std::set<Value> values_read(const ir::Statement& st) {
   std::set<Value> read = values_read({st.value, st.solve_operator, st.schedule.skin,
-                                      st.schedule.tolerance, st.schedule.max_iterations});
+                                      st.schedule.tolerance, st.schedule.max_iterations,
+                                      st.schedule.order});
   if (st.op != ir::AssignOp::Set) read.insert(target(st));
   return read;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "analysis/aliasing.hpp"
+#include "analysis/fast_sums.hpp"
 #include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
 #include "analysis/observed_steps.hpp"
@@ -32,6 +33,7 @@ struct ModelFacts {
   SearchPlan searches;
   ObservedStepReport observed_steps;
   StatementFusion fusion;
+  FastSumReport fast_sums;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

@@ -290,7 +290,7 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (fact.kind == SearchFact::Kind::Neighbours && !st.schedule.skin &&
         st.labels[acc->label].set != home)
       needed.insert({home, kPosition});
-    if (fact.kind == SearchFact::Kind::Dense && dx.dx) {
+    if (fact.kind == SearchFact::Kind::Dense && dx.dx && !facts_.fast_sums.count(acc->id)) {
       needed.insert({home, kPosition});
       needed.insert({st.labels[acc->label].set, kPosition});
     }
@@ -392,6 +392,8 @@ void ModelEmitter::kernel(const Kernel& k) {
     buffers.back() = k.sink.empty() ? buffer_member(home, member->var) : k.sink;
     linef("{}.resize({});", buffers.back(), count);
   }
+  for (const Accumulate* acc : uses.accumulations)
+    if (facts_.fast_sums.count(acc->id)) fast_sum(*acc, st, names, locals, count);
   std::vector<const Loop*> per_particle;
   std::string pairs_once;  // names the run-time choice of a search's pair walk
   for (const Loop& l : loops) {
@@ -475,6 +477,8 @@ void ModelEmitter::kernel_comment(const Kernel& k, const StatementUses& uses) {
               facts_.symmetry.at(acc->id).reason);
     if (facts_.uniform_sums.at(acc->id).once)
       comment("  " + facts_.uniform_sums.at(acc->id).reason);
+    if (auto fast = facts_.fast_sums.find(acc->id); fast != facts_.fast_sums.end())
+      comment("  " + fast->second.reason);
   }
   if (st.solve_operator) comment(facts_.linear_operators.at(k.position).reason);
   for (const auto& [member, alias] : members)
@@ -739,6 +743,7 @@ std::vector<ModelEmitter::Loop> ModelEmitter::fuse_loops(
     const std::vector<const Accumulate*>& accumulations, const Statement& st) const {
   std::vector<Loop> loops;
   for (const Accumulate* acc : accumulations) {
+    if (facts_.fast_sums.count(acc->id)) continue;  // summed by fast_sum(), not in a loop
     const int set = st.labels[acc->label].set;
     const SearchFact::Kind kind = facts_.neighbourhoods.at(acc->id).kind;
     const bool once = facts_.uniform_sums.at(acc->id).once;

@@ -76,8 +76,16 @@ ModelEmitter::ModelEmitter(const Model& model, const ModelFacts& facts, const So
                           "set_matrix_market",
                           "matrix_market_",
                           "stage_names",
-                          "run_stage"})
+                          "run_stage",
+                          "fast_sum_report",
+                          "set_check_accuracy",
+                          "fast_sums_",
+                          "check_accuracy_"})
     members_.reserve(api);
+  for (const auto& [id, fact] : facts_.fast_sums) {
+    const std::size_t index = fast_sum_records_.size();
+    fast_sum_records_[id] = index;
+  }
   for (const Stage& stage : m_.stages)
     if (stage.kind == StageKind::Named)
       stage_methods_[stage.name] = members_.fresh(cpp_name(stage.name));
@@ -245,6 +253,7 @@ void ModelEmitter::header() {
   std::vector<std::string> std_headers = {"algorithm", "cmath",  "cstdint", "limits",
                                           "map",       "string", "vector"};
   if (!lists_.empty()) std_headers.push_back("optional");
+  if (!fast_sum_records_.empty()) std_headers.push_back("chrono");
   std::sort(std_headers.begin(), std_headers.end());
   for (const std::string& h : std_headers) linef("#include <{}>", h);
   line("");
@@ -264,6 +273,8 @@ void ModelEmitter::header() {
     for (const char* h :
          {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
       headers.push_back(h);
+  if (!fast_sum_records_.empty())
+    for (const char* h : {"fast_sum/contract.hpp", "fast_sum/fmm.hpp"}) headers.push_back(h);
   std::sort(headers.begin(), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
   line("");
@@ -349,6 +360,7 @@ void ModelEmitter::public_api() {
   if (options_.profile) profile_api();
   boundary_report();
   solve_report();
+  fast_sum_report();
   log();
   frames();
   line("");
@@ -901,6 +913,14 @@ void ModelEmitter::state() {
   for (const auto& [st, result] : solve_results_)
     linef("partc::SolveResult {};  // the last solve of {}", result, source_line(st->loc));
   if (!solve_results_.empty()) line("std::string matrix_market_;  // \"\": no Matrix Market files");
+  if (!fast_sum_records_.empty()) {
+    std::vector<std::string> records(fast_sum_records_.size());
+    for (const auto& [id, index] : fast_sum_records_)
+      records[index] = fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"}}",
+                                   options_.source_name, facts_.fast_sums.at(id).line);
+    linef("std::vector<partc::fast_sum::FastSumRecord> fast_sums_{{{}}};", fmt::join(records, ", "));
+    line("bool check_accuracy_ = false;  // --check-accuracy");
+  }
   for (const auto& [id, sums] : pair_sums_)
     linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second,
           sums.first);

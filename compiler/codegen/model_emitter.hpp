@@ -263,6 +263,11 @@ class ModelEmitter {
                  NameTable& locals, const std::string& walk, const std::string& kernel);
   std::string pair_sums_member(const Accumulate& acc, const std::string& kernel);
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
+  // codegen/fast_sum.cpp: a dense sum by the fast multipole method, before the
+  // particle loop; its result read as names.accumulators[acc.id].
+  void fast_sum(const Accumulate& acc, const Statement& st, ExpressionNames& names,
+                NameTable& locals, const std::string& count);
+  void fast_sum_report();
   // codegen/solve.cpp: a solve statement's system, assembled and solved.
   void solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
                   const std::string& count);
@@ -292,6 +297,7 @@ class ModelEmitter {
   // The VerletPairs a lists member keeps: half, full, or both when it serves both.
   std::string lists_pairs(const std::string& lists) const;
   std::map<const Statement*, std::string> solve_results_;  // the last result of each solve
+  std::map<int, std::size_t> fast_sum_records_;  // Accumulate::id -> its index in fast_sums_
   std::vector<Kernel> kernels_;
   // Statements codegen made: calibration variants, fused passes' members.
   std::deque<Statement> variants_;

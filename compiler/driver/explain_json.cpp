@@ -145,6 +145,8 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
           a["newton"] = c.facts.symmetry.at(acc->id).newton;
           a["pairs"] = c.facts.symmetry.at(acc->id).reason;
         }
+        if (auto fast = c.facts.fast_sums.find(acc->id); fast != c.facts.fast_sums.end())
+          a["fast_sum"] = fast->second.reason;
         s["accumulations"].push_back(a);
       }
       out["statements"].push_back(s);

@@ -1,7 +1,7 @@
 // partc: compiles a .part model into a C++ translation unit.
 //
 //   partc model.part -o model.cpp [--main] [--emit=ast|ir|cpp] [--explain]
-//         [--drop NAME] [--stdlib DIR] [--no-fuse]
+//         [--drop NAME] [--stdlib DIR] [--no-fuse] [--schedule ENTRIES]
 //
 // Exit status: 0 success, 1 the model has errors, 2 bad command line,
 // 3 an I/O failure or a partc bug. Output files are written whole or not at
@@ -28,7 +28,7 @@ namespace {
 
 const char* const kUsage =
     "usage: partc MODEL.part [-o OUTPUT] [--main] [--emit=ast|ir|cpp] [--explain]\n"
-    "             [--drop NAME]... [--stdlib DIR]... [--no-fuse]\n"
+    "             [--drop NAME]... [--stdlib DIR]... [--no-fuse] [--schedule ENTRIES]...\n"
     "\n"
     "Compiles a particle model into one C++17 translation unit.\n"
     "\n"
@@ -48,6 +48,9 @@ const char* const kUsage =
     "  --no-fuse         every statement a pass of its own: no fusion across statements,\n"
     "                    to measure what it saves (the sums of one statement still share\n"
     "                    a walk)\n"
+    "  --schedule ENTRIES  schedule entries over the model's own, as its schedule block\n"
+    "                    writes them: --schedule 'force: dense = fmm, tol = 1e-8' replaces\n"
+    "                    the options it names of the entry for force (repeatable)\n"
     "  --stdlib DIR      look for modules in DIR before the standard library (the\n"
     "                    scene's own folder is searched first); repeatable\n"
     "  --version         print the version\n"
@@ -63,6 +66,7 @@ struct Options {
   bool explain_json = false;
   std::string emit = "cpp";
   std::vector<std::string> drop;
+  std::vector<std::string> schedule;
   std::vector<std::string> module_folders;
   std::optional<std::string> depfile;
 };
@@ -87,12 +91,17 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--depfile") {
       if (k + 1 >= argc) throw UsageError{"--depfile needs a file name"};
       o.depfile = argv[++k];
-    } else if (arg == "--drop" || arg == "--stdlib") {
+    } else if (arg == "--drop" || arg == "--stdlib" || arg == "--schedule") {
       if (k + 1 >= argc || argv[k + 1][0] == '\0')
-        throw UsageError{arg + (arg == "--drop" ? " needs an effect instance's name" : " needs a folder")};
+        throw UsageError{arg + (arg == "--drop"       ? " needs an effect instance's name"
+                                : arg == "--schedule" ? " needs schedule entries, as in "
+                                                        "'force: skin = 0.4'"
+                                                      : " needs a folder")};
       const std::string value = argv[++k];
       if (arg == "--drop") {
         o.drop.push_back(value);
+      } else if (arg == "--schedule") {
+        o.schedule.push_back(value);
       } else {
         std::error_code error;
         if (!std::filesystem::is_directory(value, error))
@@ -191,7 +200,7 @@ int main(int argc, char** argv) {
     for (const std::string& dir : options.module_folders) scene.roots.push_back({dir, dir});
     scene.roots.push_back({PARTC_STDLIB_DIR, "stdlib"});
     scene.drop = options.drop;
-    const partc::Compilation c = partc::analyse(*file, scene, {options.fuse});
+    const partc::Compilation c = partc::analyse(*file, scene, {options.fuse, options.schedule});
     for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
     if (options.explain)
       std::cout << (options.explain_json ? partc::explain_json(c, *file) : partc::explain(c, *file));

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 
+#include "analysis/fast_sums.hpp"
 #include "analysis/schedule.hpp"
+#include "ast/schedule_overrides.hpp"
 #include "grammar/parser.hpp"
 #include "ir/visitor.hpp"
 #include "sema/sema.hpp"
@@ -20,6 +22,8 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   // Text to syntax tree; syntax errors stop here, with what was expected.
   // A scene's effects are opened and instantiated: a plain model from here on.
   c.ast = instantiate_scene(parse_program(file), file, scene, c.scene);
+  // Schedule entries from the command line, over the model's own.
+  ast::apply_schedule_overrides(c.ast, file, passes.schedule);
   // Names and types: everything later can trust the IR to be well typed.
   c.model = build_ir(c.ast, file, c.warnings);
   // Conditionals a constant decides (use sph.pressure(const kernel = 1)),
@@ -41,8 +45,10 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   c.facts.symmetry = find_pair_symmetry(c.model);
   // A solve's matrix: dense or sparse as its sums' neighbourhoods say.
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
-  // The schedule can only be judged once neighbourhood sums are known.
+  // The schedule can only be judged once neighbourhood sums are known; so
+  // can which dense sums it runs fast, and with what kernel and charges.
   check_schedule(c.model, c.facts.neighbourhoods);
+  c.facts.fast_sums = find_fast_sums(c.model, c.facts.neighbourhoods, file.text());
   // Which sums share a search, and at what radius: needs the schedule checked.
   c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
   // What only the state after a step needs (an observable nothing in a step
@@ -195,6 +201,8 @@ std::string explain(const Compilation& c, const SourceFile& file) {
           out += "    " + c.facts.uniform_sums.at(acc->id).reason + "\n";
         if (c.coincident.at(acc->id).singular)
           out += "    coincident particles: " + c.coincident.at(acc->id).reason + "\n";
+        if (auto fast = c.facts.fast_sums.find(acc->id); fast != c.facts.fast_sums.end())
+          out += "    " + fast->second.reason + "\n";
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
         const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
         out += std::string("    pairs: ") +

@@ -35,6 +35,8 @@ struct PassOptions {
   // false (--no-fuse): every statement a pass of its own, to measure what
   // fusion across statements buys; the sums of one statement still share a walk.
   bool fuse_statements = true;
+  // --schedule TEXT: schedule entries over the model's own (ast/schedule_overrides.hpp).
+  std::vector<std::string> schedule;
 };
 
 // Front end and analyses; throws CompileError for a bad model, and

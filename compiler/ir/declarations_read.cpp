@@ -30,6 +30,7 @@ void for_each_root(M& model, F&& f) {
       f(st.schedule.skin);
       f(st.schedule.tolerance);
       f(st.schedule.max_iterations);
+      f(st.schedule.order);
     }
     for (auto& loop : stage.loops) {
       f(loop.until);

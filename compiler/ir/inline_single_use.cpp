@@ -65,7 +65,7 @@ struct Renumber : Mutator {
 
 bool default_schedule(const Schedule& s) {
   return s.search == SearchChoice::Auto && !s.skin && s.solver == SolverChoice::Auto &&
-         !s.compensated;
+         !s.compensated && s.dense == DenseMethod::Direct;
 }
 
 class Inliner {

@@ -335,13 +335,19 @@ const char* solver_choice_name(SolverChoice c);  // as .part spells it
 // always (at the largest radius), or never (a search of their own).
 enum class Sharing { Auto, Shared, Separate };
 const char* sharing_name(Sharing s);  // as .part spells it
+// How a statement's dense sums (no bound on |dx|) run: over every pair, or by
+// a fast method with an accuracy knob (analysis/fast_sums.cpp).
+enum class DenseMethod { Direct, Fmm };
+const char* dense_method_name(DenseMethod d);  // as .part spells it
 struct Schedule {
   SearchChoice search = SearchChoice::Auto;
   Sharing sharing = Sharing::Auto;
   Expr skin;  // non-null: Verlet lists with this skin, reused across steps
   SolverChoice solver = SolverChoice::Auto;
-  Expr tolerance;       // of an iterative solver; null: 1e-10
+  Expr tolerance;       // of an iterative solver (null: 1e-10), or of a fast sum
   Expr max_iterations;  // of an iterative solver; null: 2n
+  DenseMethod dense = DenseMethod::Direct;
+  Expr order;  // of a fast sum: Chebyshev nodes per axis; null: chosen from the tolerance
   // summation = compensated: every sum of the statement adds with Neumaier's
   // compensation, each particle its own terms in order (no pair walks).
   bool compensated = false;

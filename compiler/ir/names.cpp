@@ -103,6 +103,14 @@ const char* solver_choice_name(SolverChoice c) {
   return "?";
 }
 
+const char* dense_method_name(DenseMethod d) {
+  switch (d) {
+    case DenseMethod::Direct: return "direct";
+    case DenseMethod::Fmm: return "fmm";
+  }
+  return "?";
+}
+
 int ParticleSet::find_var(const std::string& var_name) const {
   for (std::size_t k = 0; k < vars.size(); ++k)
     if (vars[k].name == var_name) return static_cast<int>(k);

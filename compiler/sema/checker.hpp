@@ -154,6 +154,9 @@ class Sema {
   ir::SearchChoice search_choice(const ast::Chain& value);
   ir::Sharing sharing_choice(const ast::Chain& value);
   ir::SolverChoice solver_choice(const ast::Chain& value);
+  ir::DenseMethod dense_method(const ast::Chain& value);
+  void check_fast_sum_options(const ir::Statement& st, const ast::ScheduleItem& item);
+  ir::Expr positive_schedule_value(const ast::ScheduleOption& option, Type type);
   static std::vector<std::string> var_names(const ir::ParticleSet& set);
 
   // ---- expressions.cpp: conversions, operators, names ---------------------

@@ -369,23 +369,20 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
         fail(option.value.loc, "summation is plain or compensated",
              "compensated: Neumaier's summation, for terms of wildly different sizes");
       st.schedule.compensated = id->name == "compensated";
-    } else if (option.key.name == "solver" || option.key.name == "tol" ||
-               option.key.name == "max_iterations") {
+    } else if (option.key.name == "solver" || option.key.name == "max_iterations") {
       if (!st.solve_operator)
         fail(option.key.loc, quoted(option.key.name) + " schedules a solve, and " +
                                  quoted(st.name) + " is not one");
-      if (option.key.name == "solver") {
+      if (option.key.name == "solver")
         st.schedule.solver = solver_choice(option.value);
-        continue;
-      }
-      Scope scope;
-      scope.context = "a solver's " + option.key.name;
-      const bool tol = option.key.name == "tol";
-      Expr value = convert(check(option.value, scope), tol ? Type::Real : Type::Int,
-                           option.value.loc, "the solver's " + option.key.name);
-      if (auto v = evaluate_constant(value, model_); v && !(*v > 0))
-        fail(option.value.loc, "the solver's " + option.key.name + " must be positive");
-      (tol ? st.schedule.tolerance : st.schedule.max_iterations) = value;
+      else
+        st.schedule.max_iterations = positive_schedule_value(option, Type::Int);
+    } else if (option.key.name == "tol") {
+      st.schedule.tolerance = positive_schedule_value(option, Type::Real);
+    } else if (option.key.name == "dense") {
+      st.schedule.dense = dense_method(option.value);
+    } else if (option.key.name == "order") {
+      st.schedule.order = positive_schedule_value(option, Type::Int);
     } else if (option.key.name == "precision") {
       fail(option.key.loc, "precision is chosen per variable, not per statement",
            "write P.v: precision = float for one variable, or precision = float alone for the "
@@ -394,13 +391,51 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
                suggestion(option.key.name, {"search", "sharing", "skin", "summation", "solver",
-                                            "tol", "max_iterations"}),
+                                            "tol", "max_iterations", "dense", "order"}),
            "options: search = auto | brute_force | cell_list | kd_tree; "
            "sharing = auto | shared | separate; skin = LENGTH; "
-           "summation = plain | compensated; for a solve: solver = auto | lu | cg | bicgstab | "
-           "gmres, tol = 1e-10, max_iterations = K");
+           "summation = plain | compensated; dense = direct | fmm, with tol = 1e-6 or "
+           "order = K; for a solve: solver = auto | lu | cg | bicgstab | gmres, tol = 1e-10, "
+           "max_iterations = K");
     }
   }
+  check_fast_sum_options(st, item);
+}
+
+// tol belongs to a solve or to a fast sum, order to a fast sum only; a fast
+// sum takes one of them (the other follows from it).
+void Sema::check_fast_sum_options(const ir::Statement& st, const ast::ScheduleItem& item) {
+  auto option_loc = [&](const std::string& key) {
+    for (const ast::ScheduleOption& option : item.options)
+      if (option.key.name == key) return option.key.loc;
+    return item.loc;
+  };
+  const bool fmm = st.schedule.dense == ir::DenseMethod::Fmm;
+  if (fmm && st.solve_operator)
+    fail(option_loc("dense"), "a solve's dense sums are assembled into its matrix, not summed fast",
+         "a matrix-free solve with the fast sum is not supported yet; drop dense = fmm");
+  if (st.schedule.tolerance && !fmm && !st.solve_operator)
+    fail(option_loc("tol"),
+         "'tol' schedules a solve or a fast sum, and " + quoted(st.name) + " is neither",
+         "for a fast dense sum: dense = fmm, tol = 1e-6");
+  if (st.schedule.order && !fmm)
+    fail(option_loc("order"), "'order' schedules a fast sum, and " + quoted(st.name) +
+                                  " has no dense = fmm",
+         "dense = fmm, order = 8: Chebyshev nodes per axis of the fast multipole method");
+  if (st.schedule.order && st.schedule.tolerance)
+    fail(option_loc("order"), "a fast sum takes a tolerance or an order, not both",
+         "tol = 1e-6 lets the cost model choose the order; order = K fixes it");
+}
+
+// A schedule value that must be a positive number of the given type.
+ir::Expr Sema::positive_schedule_value(const ast::ScheduleOption& option, Type type) {
+  Scope scope;
+  scope.context = "a schedule's " + option.key.name;
+  Expr value = convert(check(option.value, scope), type, option.value.loc,
+                       "the schedule's " + option.key.name);
+  if (auto v = evaluate_constant(value, model_); v && !(*v > 0))
+    fail(option.value.loc, "the schedule's " + option.key.name + " must be positive");
+  return value;
 }
 
 // precision = float | double for the whole model (no subject) or for one
@@ -480,8 +515,8 @@ void Sema::decide_storage() {
       var.storage_reason =
           std::string(var.storage == ir::Precision::Float ? "float" : "double") +
           ", as the schedule says for " +
-          (own != variable_precision_.end() ? "this variable" : "the whole model") + " (line " +
-          std::to_string(file_.line_column(chosen->loc.begin).line) + ")";
+          (own != variable_precision_.end() ? "this variable" : "the whole model") + " (" +
+          file_.line_reference(chosen->loc.begin) + ")";
     }
 }
 
@@ -493,6 +528,15 @@ ir::SolverChoice Sema::solver_choice(const ast::Chain& value) {
     if (id && id->name == ir::solver_choice_name(c)) return c;
   fail(value.loc, "unknown solver " + quoted(source_text(value.loc)),
        "solvers: auto, lu (dense), cg (symmetric positive definite), bicgstab, gmres");
+}
+
+ir::DenseMethod Sema::dense_method(const ast::Chain& value) {
+  const ast::Operand* sole = ast::sole_operand(value);
+  const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
+  for (ir::DenseMethod d : {ir::DenseMethod::Direct, ir::DenseMethod::Fmm})
+    if (id && id->name == ir::dense_method_name(d)) return d;
+  fail(value.loc, "dense sums run direct or fmm, not " + quoted(source_text(value.loc)),
+       "fmm: a black-box fast multipole method with an accuracy knob (tol or order)");
 }
 
 ir::SearchChoice Sema::search_choice(const ast::Chain& value) {

@@ -4,8 +4,9 @@
 //
 // Options (also --help): --steps K, --seed S, --set NAME=VALUE, --input
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
-// --last-finite FILE.csv, --log FILE.csv, --log-every M, --log-file-every M, --quiet;
-// "--option=value" works too. Exit status: 0 success, 1 bad input file or I/O
+// --last-finite FILE.csv, --log FILE.csv, --log-every M, --log-file-every M, --quiet,
+// and for models that have them --stage NAME[:K], --matrix-market PREFIX (solves) and
+// --check-accuracy (fast sums); "--option=value" works too. Exit status: 0 success, 1 bad input file or I/O
 // failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
 // Surprises:
@@ -38,7 +39,9 @@
 //   step(observed)): the fewer rows logged, the less a run computes. A
 //   --last-finite state may hold such variables from an earlier step.
 // - The summary says how many particles left through open faces, if any are
-//   open, and ends with the model's search_report(): each neighbour search
+//   open, each solve's and each fast sum's figures (a fast sum's order, its
+//   predicted error and, with --check-accuracy, the error measured against
+//   the direct sum), and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
 #pragma once
 
@@ -89,6 +92,7 @@ struct DriverOptions {
   std::optional<std::int64_t> log_every;                     // overrides the model's interval
   std::int64_t log_file_every = 1;                           // --log's rows
   bool quiet = false;
+  bool check_accuracy = false;  // fast sums checked against the direct sum
 };
 
 // Models that log observables (`output ...`) have log_columns(), log_every()
@@ -109,6 +113,14 @@ template <class Model, class = void>
 struct has_solves : std::false_type {};
 template <class Model>
 struct has_solves<Model, std::void_t<decltype(std::declval<const Model&>().solve_report())>>
+    : std::true_type {};
+
+// Models with fast sums (dense = fmm) report them, and can check their accuracy.
+template <class Model, class = void>
+struct has_fast_sums : std::false_type {};
+template <class Model>
+struct has_fast_sums<Model,
+                     std::void_t<decltype(std::declval<const Model&>().fast_sum_report())>>
     : std::true_type {};
 
 // Models with open faces count the particles that left through them.
@@ -158,7 +170,7 @@ inline std::string usage_line(const std::string& model) {
          " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
          " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M]"
          " [--last-finite FILE.csv] [--log FILE.csv] [--log-every M] [--log-file-every M]"
-         " [--stage NAME[:K]]... [--matrix-market PREFIX] [--quiet] [--help]";
+         " [--stage NAME[:K]]... [--matrix-market PREFIX] [--check-accuracy] [--quiet] [--help]";
 }
 
 template <class Model>
@@ -292,6 +304,12 @@ DriverOptions parse_driver_options(Model& model, const std::vector<std::string>&
                          " has no solve statement");
       options.matrix_market = value();
       require_directory_of(option, options.matrix_market);
+    } else if (option == "--check-accuracy") {
+      if constexpr (!has_fast_sums<Model>::value)
+        throw UsageError("option --check-accuracy: model " + std::string(Model::model_name) +
+                         " has no fast sum (dense = fmm)");
+      if (attached) throw UsageError("option --check-accuracy takes no value");
+      options.check_accuracy = true;
     } else if (option == "--vtk") {
       options.vtk_prefix = value();
       require_directory_of(option, options.vtk_prefix);
@@ -331,6 +349,9 @@ void print_help(std::ostream& out, const Model& model) {
   if constexpr (has_solves<Model>::value)
     text << "  --matrix-market P    write each solve's matrix and right side to P_NAME.mtx,\n"
          << "                       P_NAME_rhs.mtx (Matrix Market)\n";
+  if constexpr (has_fast_sums<Model>::value)
+    text << "  --check-accuracy     check every fast sum against the direct sum on a sample of\n"
+         << "                       targets; an error above its tolerance stops the run (exit 3)\n";
   if constexpr (logs_observables<Model>::value)
     text << "  --log FILE.csv       write the logged observables every step (columns: "
          << join(Model::log_columns()) << ")\n"
@@ -388,6 +409,8 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
     for (const std::string& line : model.boundary_report()) text << line << "\n";
   if constexpr (has_solves<Model>::value)
     for (const std::string& line : model.solve_report()) text << line << "\n";
+  if constexpr (has_fast_sums<Model>::value)
+    for (const std::string& line : model.fast_sum_report()) text << line << "\n";
   const std::vector<SearchReport> searches = model.search_report();
   if (!searches.empty()) text << "neighbour searches:\n";
   for (const SearchReport& s : searches)
@@ -431,6 +454,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   model.set_seed(options.seed);
   if constexpr (has_solves<Model>::value) model.set_matrix_market(options.matrix_market);
+  if constexpr (has_fast_sums<Model>::value) model.set_check_accuracy(options.check_accuracy);
   if (options.inputs.empty()) {
     model.init();
   } else {

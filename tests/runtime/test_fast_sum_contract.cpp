@@ -1,0 +1,94 @@
+// The accuracy contract of a model's fast sums (partc/fast_sum/contract.hpp):
+// a measured error above the tolerance stops the run naming the sum, what was
+// asked and measured and what order would meet it; a tolerance no order
+// meets stops it at once; an order fixed by the schedule is reported, never
+// refused; the summary says what was predicted and measured.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "partc/errors.hpp"
+#include "partc/fast_sum/contract.hpp"
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::Matches;
+using partc::Vec;
+using partc::fast_sum::Accuracy;
+using partc::fast_sum::FastSumRecord;
+using partc::fast_sum::Fmm;
+
+namespace {
+
+struct Coulomb {
+  double operator()(double r) const { return r > 0 ? 1 / r : 0.0; }
+};
+
+std::vector<Vec<3>> cloud(std::size_t n) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec<3>> x(n);
+  for (auto& p : x) p = Vec<3>{u(rng), u(rng), u(rng)};
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "fast sum contract: an error above the tolerance stops the run, saying what would meet it",
+    "[fast_sum][contract]") {
+  const auto x = cloud(6000);
+  const std::vector<double> q(x.size(), 1.0);
+  const Accuracy asked{1e-3, 0, false};
+  const Fmm fmm(x, x, Coulomb{}, asked);
+  std::vector<double> phi(x.size());
+  fmm.potential(q.data(), phi.data());
+  FastSumRecord record{"sum at model.part:7"};
+  record.evaluated(asked, fmm, std::chrono::steady_clock::now());
+  CHECK_THAT(record.summary(), !Contains("measured"));
+
+  record.check(fmm, Coulomb{}, x, x, q, phi);  // as computed: within tol
+  CHECK(record.worst_measured_l2() <= 1e-3);
+  CHECK(record.worst_measured_l2() > 0);
+  CHECK_THAT(record.summary(),
+             Matches("sum at model\\.part:7: fmm order \\d+ for tol 0\\.001, predicted .* relative "
+                     "L2, measured .* \\(max .*, 500 targets\\); 1 evaluation, .* s"));
+
+  for (double& v : phi) v *= 1 + 1e-2;  // a result 1% off
+  try {
+    record.check(fmm, Coulomb{}, x, x, q, phi);
+    FAIL("a result 10x less accurate than asked passed the check");
+  } catch (const partc::NumericalError& e) {
+    CHECK_THAT(std::string(e.what()),
+               Matches("sum at model\\.part:7: asked tol 0\\.001, measured 0\\.01 \\(relative L2 "
+                       "over 500 targets, against the direct sum\\) with order \\d+; .*"));
+  }
+}
+
+TEST_CASE("fast sum contract: a tolerance no order meets stops the run at once",
+          "[fast_sum][contract]") {
+  const auto x = cloud(20000);  // enough for far pairs, whose error is not 0
+  const Accuracy asked{1e-30, 0, false};
+  const Fmm fmm(x, x, Coulomb{}, asked);
+  FastSumRecord record{"sum at model.part:9"};
+  CHECK_THROWS_WITH(record.evaluated(asked, fmm, std::chrono::steady_clock::now()),
+                    Matches("sum at model\\.part:9: no order meets tol 1e-30: the highest, \\d+, "
+                            "is predicted to give .*"));
+}
+
+TEST_CASE("fast sum contract: an order the schedule fixes is reported, never refused",
+          "[fast_sum][contract]") {
+  const auto x = cloud(6000);
+  const std::vector<double> q(x.size(), 1.0);
+  const Accuracy asked{0, 2, false};
+  const Fmm fmm(x, x, Coulomb{}, asked);
+  std::vector<double> phi(x.size());
+  fmm.potential(q.data(), phi.data());
+  FastSumRecord record{"sum at model.part:11"};
+  record.evaluated(asked, fmm, std::chrono::steady_clock::now());
+  for (double& v : phi) v *= 1.5;
+  CHECK_NOTHROW(record.check(fmm, Coulomb{}, x, x, q, phi));
+  CHECK_THAT(record.summary(), Contains("fmm order 2 (schedule)"));
+  CHECK(record.worst_measured_l2() > 0.4);
+}
