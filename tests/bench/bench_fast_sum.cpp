@@ -33,48 +33,24 @@
 #include <string>
 #include <vector>
 
+#include "../runtime/fast_sum_cases.hpp"
 #include "partc/fast_sum/accuracy.hpp"
 #include "partc/fast_sum/fmm.hpp"
 #include "partc/parallel.hpp"
 #include "timing.hpp"
 
+using fast_sum_cases::Coulomb;
+using fast_sum_cases::Gaussian;
+using fast_sum_cases::Multiquadric;
 using partc::Vec;
 using partc::fast_sum::Accuracy;
 using partc::fast_sum::Fmm;
 
 namespace {
 
-struct Coulomb {
-  double operator()(double r) const { return r > 0 ? 1 / r : 0.0; }
-};
-struct Multiquadric {
-  double e;
-  double operator()(double r) const { return std::sqrt(1 + (e * r) * (e * r)); }
-};
-struct Gaussian {
-  double e;
-  double operator()(double r) const { return std::exp(-(e * r) * (e * r)); }
-};
-
 std::vector<Vec<3>> points(std::size_t n, const std::string& dist, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g(0, 1);
-  std::vector<Vec<3>> x;
-  while (x.size() < n) {
-    Vec<3> p;
-    if (dist == "uniform") {
-      for (int d = 0; d < 3; ++d) p[d] = u(rng);
-    } else {  // Plummer, radius law (u^(-2/3) - 1)^(-1/2) cut at 10, scale 0.05
-      const double r = 1 / std::sqrt(std::pow(u(rng), -2.0 / 3) - 1);
-      if (!(r < 10)) continue;
-      const Vec<3> dir{{g(rng), g(rng), g(rng)}};
-      const double len = partc::norm(dir);
-      for (int d = 0; d < 3; ++d) p[d] = 0.5 + 0.05 * r * dir[d] / len;
-    }
-    x.push_back(p);
-  }
-  return x;
+  return dist == "uniform" ? fast_sum_cases::uniform_points<3>(n, seed)
+                           : fast_sum_cases::plummer_points<3>(n, seed);
 }
 
 // The vectorised direct sum at targets [0, count): coordinates as arrays.

@@ -9,11 +9,13 @@
 #include <random>
 #include <vector>
 
+#include "fast_sum_cases.hpp"
 #include "partc/errors.hpp"
 #include "partc/fast_sum/contract.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::Matches;
+using fast_sum_cases::Coulomb;
 using partc::Vec;
 using partc::fast_sum::Accuracy;
 using partc::fast_sum::FastSumRecord;
@@ -21,17 +23,7 @@ using partc::fast_sum::Fmm;
 
 namespace {
 
-struct Coulomb {
-  double operator()(double r) const { return r > 0 ? 1 / r : 0.0; }
-};
-
-std::vector<Vec<3>> cloud(std::size_t n) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec<3>> x(n);
-  for (auto& p : x) p = Vec<3>{u(rng), u(rng), u(rng)};
-  return x;
-}
+std::vector<Vec<3>> cloud(std::size_t n) { return fast_sum_cases::uniform_points<3>(n, 3); }
 
 }  // namespace
 
