@@ -25,14 +25,8 @@ namespace {
 
 using ir::Expr;
 
-bool is_norm_of_dx(const Expr& e) {
-  auto c = ir::as<ir::Call>(e);
-  return c && c->fn == ir::Function::Norm && ir::as<ir::Dx>(c->args[0]);
-}
-
-bool is_squared_norm_of_dx(const ir::Call& n) {
-  return n.fn == ir::Function::Dot && ir::as<ir::Dx>(n.args[0]) && ir::as<ir::Dx>(n.args[1]);
-}
+using ir::is_norm_of_dx;
+using ir::is_squared_norm_of_dx;
 
 // dot(dx, dx) as |dx| * |dx|: a kernel is emitted as a function of r = |dx| alone.
 class SquaredNormAsProduct : public ir::Mutator {
@@ -57,7 +51,7 @@ class FactorReads : public ir::Visitor {
 
  protected:
   void visit(const ir::Call& n) override {
-    if ((n.fn == ir::Function::Norm && ir::as<ir::Dx>(n.args[0])) || is_squared_norm_of_dx(n))
+    if (is_norm_of_dx(n) || is_squared_norm_of_dx(n))
       norm_of_dx = true;
     else
       ir::Visitor::visit(n);
@@ -163,8 +157,7 @@ class NormAsR : public ir::Mutator {
 
  protected:
   Expr mutate(const ir::Call& n, const Expr& self) override {
-    if (n.fn == ir::Function::Norm && ir::as<ir::Dx>(n.args[0]))
-      return std::make_shared<ir::FnArg>(ir::Type::Real, 0, "r", n.loc);
+    if (is_norm_of_dx(n)) return std::make_shared<ir::FnArg>(ir::Type::Real, 0, "r", n.loc);
     return ir::Mutator::mutate(n, self);
   }
 };

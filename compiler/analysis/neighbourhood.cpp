@@ -27,17 +27,8 @@ namespace {
 
 using ir::Expr;
 
-bool is_dx(const Expr& e) { return ir::as<ir::Dx>(e) != nullptr; }
-
-bool is_norm_of_dx(const Expr& e) {
-  auto c = ir::as<ir::Call>(e);
-  return c && c->fn == ir::Function::Norm && is_dx(c->args[0]);
-}
-
-bool is_squared_norm_of_dx(const Expr& e) {
-  auto c = ir::as<ir::Call>(e);
-  return c && c->fn == ir::Function::Dot && is_dx(c->args[0]) && is_dx(c->args[1]);
-}
+using ir::is_norm_of_dx;
+using ir::is_squared_norm_of_dx;
 
 void split_conjunction(const Expr& e, std::vector<Expr>& terms) {
   auto b = ir::as<ir::Binary>(e);

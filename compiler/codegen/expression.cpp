@@ -157,7 +157,7 @@ class Printer {
   Printed call(const Call& n) {
     std::vector<std::string> args;
     for (const Expr& a : n.args) args.push_back(print(a).text);
-    if (n.fn == Function::Norm && as<Dx>(n.args[0]) && !names_.dx_norm.empty())
+    if (is_norm_of_dx(n) && !names_.dx_norm.empty())
       return {names_.dx_norm, kPrimary};
     // pow(x, k) for a small integer literal k: multiplications, as hand-written kernels do.
     if (n.fn == Function::Pow) {

@@ -76,7 +76,7 @@ class UsesDx : public Visitor {
  protected:
   void visit(const Dx&) override { dx = true; }
   void visit(const Call& n) override {
-    if (n.fn == Function::Norm && as<Dx>(n.args[0])) norm = true;
+    if (is_norm_of_dx(n)) norm = true;
     Visitor::visit(n);
   }
 };

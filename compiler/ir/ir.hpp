@@ -232,6 +232,21 @@ struct Select : ExprNode {
   const Expr condition, then, otherwise;
 };
 
+// |dx| (norm(dx)) and dot(dx, dx): the ways an expression reads a pair's
+// distance, which neighbourhood bounds and fast-sum kernels are made of.
+inline bool is_norm_of_dx(const Call& c) { return c.fn == Function::Norm && as<Dx>(c.args[0]); }
+inline bool is_squared_norm_of_dx(const Call& c) {
+  return c.fn == Function::Dot && as<Dx>(c.args[0]) && as<Dx>(c.args[1]);
+}
+inline bool is_norm_of_dx(const Expr& e) {
+  const Call* c = as<Call>(e);
+  return c && is_norm_of_dx(*c);
+}
+inline bool is_squared_norm_of_dx(const Expr& e) {
+  const Call* c = as<Call>(e);
+  return c && is_squared_norm_of_dx(*c);
+}
+
 // ---- Declarations -------------------------------------------------------
 
 // fn name(a: real, ...) = body: pure, of its arguments, params and consts.
