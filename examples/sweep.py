@@ -21,8 +21,7 @@ flags a value needs (none for a param: one build serves every value) and
 which driver arguments. `--knob-kind schedule --knob 'NAME: KEY'` sweeps a
 schedule entry through partc's `--schedule 'NAME: KEY = VALUE'` option
 (ScheduleKnob): one build per value, no driver arguments (`--knob 'force:
-skin' --values 0.1,0.3`, the statement named force in the model). It checks
-that this partc has the option and refuses otherwise. A knob must be a
+skin' --values 0.1,0.3`, the statement named force in the model). A knob must be a
 number (the fit and the picture are log-log); a knob of words (search =
 cell_list) is another kind still to write.
 
@@ -116,16 +115,10 @@ class ParamKnob:
 class ScheduleKnob:
     """A schedule entry, `NAME: KEY`, chosen by partc's `--schedule 'NAME: KEY =
     VALUE'` option (over the model's own schedule block): one build per value,
-    no driver arguments. An older partc without the option is refused."""
+    no driver arguments."""
 
     def __init__(self, entry):
         self.entry = entry  # "NAME: KEY"
-
-    def check(self, partc):
-        usage = subprocess.run([partc, "--help"], capture_output=True, text=True)
-        if "--schedule" not in usage.stdout + usage.stderr:
-            raise SweepError(f"partc ({partc}) has no --schedule option: a schedule entry "
-                             f"('{self.entry}') cannot be swept with it; sweep a param instead")
 
     def partc_flags(self, value):
         return ("--schedule", f"{self.entry} = {value}")
@@ -430,8 +423,6 @@ def sweep(args):
     partc = None
     if not args.program:
         partc = os.path.abspath(args.partc) if args.partc else find_partc(args.build_dir)
-        if isinstance(knob, ScheduleKnob):
-            knob.check(partc)
     if args.work is None:
         home = os.path.dirname(os.path.abspath(args.program)) if args.program else \
             os.path.dirname(os.path.dirname(os.path.abspath(partc)))
