@@ -3,10 +3,12 @@
 // sets and one set for both, uniform and Plummer (clustered) points, the
 // Coulomb kernel 1/r, a multiquadric and a Gaussian, at tol 1e-3, 1e-6 and
 // 1e-9; the error falling with the order; bitwise equal results on 1 and 2
-// threads; and degenerate sets (empty, one point, all coincident, a line).
+// threads; the compression of the M2L operators to their numerical rank;
+// and degenerate sets (empty, one point, all coincident, a line).
 // Charges are uniform in [-1, 1], the case the error model is calibrated for,
 // except for the multiquadric: with charges of mixed sign its sums cancel to
 // a degree the plan cannot know (error_model.hpp), so there they are in [0, 1].
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -19,6 +21,7 @@
 #include "fast_sum_cases.hpp"
 #include "partc/fast_sum/accuracy.hpp"
 #include "partc/fast_sum/fmm.hpp"
+#include "partc/fast_sum/low_rank.hpp"
 #include "partc/parallel.hpp"
 
 using partc::Vec;
@@ -130,6 +133,48 @@ TEST_CASE("the error of a fast sum falls with the order", "[fast_sum]") {
     CHECK(error > fmm.predicted_error() / 10);
     previous = error;
   }
+}
+
+// The compressed M2L operator (low_rank.hpp) against the full one: on random
+// vectors, the difference stays below eps times the largest singular value
+// (which a random vector's image bounds from below), at a rank well below
+// the nodes; a matrix with no low rank is left as it is.
+TEST_CASE("M2L operators compress to their numerical rank", "[fast_sum]") {
+  const partc::fast_sum::ChebyshevBasis basis(7);
+  const int n = 343;
+  const auto x = charges(std::size_t(n) * 8, 51, 0.0);
+  for (double eps : {1e-4, 1e-8}) {
+    for (int code : {2 * 16, 3 * 16 + 3 * 4 + 3}) {  // offsets (0, 0, 2) and (3, 3, 3)
+      const auto k = partc::fast_sum::m2l_matrix<3>(Coulomb{}, basis, 0.5, code);
+      const auto low = partc::fast_sum::compress(k, n, eps);
+      INFO("eps " << eps << ", code " << code << ", rank " << low.rank);
+      CHECK(low.rank > 0);
+      CHECK(low.rank < n / 4);
+      double largest = 0, error = 0;
+      for (int v = 0; v < 8; ++v) {
+        const double* w = x.data() + std::size_t(v) * std::size_t(n);
+        std::vector<double> coefficients(std::size_t(low.rank), 0.0);
+        for (int c = 0; c < low.rank; ++c)
+          for (int j = 0; j < n; ++j)
+            coefficients[std::size_t(c)] += low.right[std::size_t(c * n + j)] * w[j];
+        double image = 0, difference = 0, length = 0;
+        for (int m = 0; m < n; ++m) {
+          double full = 0, compressed = 0;
+          for (int j = 0; j < n; ++j) full += k[std::size_t(m * n + j)] * w[j];
+          for (int c = 0; c < low.rank; ++c)
+            compressed += low.left[std::size_t(m * low.rank + c)] * coefficients[std::size_t(c)];
+          image += full * full;
+          difference += (full - compressed) * (full - compressed);
+        }
+        for (int j = 0; j < n; ++j) length += w[j] * w[j];
+        largest = std::max(largest, std::sqrt(image / length));
+        error = std::max(error, std::sqrt(difference / length));
+      }
+      CHECK(error <= eps * largest);
+    }
+  }
+  const auto noise = charges(std::size_t(n) * std::size_t(n), 52);
+  CHECK(partc::fast_sum::compress(noise, n, 1e-8).rank == 0);
 }
 
 TEST_CASE("the sample check measures what the full comparison does", "[fast_sum]") {

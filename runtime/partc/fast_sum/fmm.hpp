@@ -22,6 +22,11 @@
 //     = [G (b_d W)]_m + ((c_s - c_t)_d - a_md) [G W]_m,  G_mn = k(|y_n - x_m|),
 // so one field M2L is D + 1 products with the potential's operator.
 //
+// M2L operators are compressed (low_rank.hpp) to the rank that keeps their
+// error below compression_share of the interpolation's, so a product costs
+// 4 p^D k flops instead of 2 p^(2D), k ~ p^2 / 2 in 3D; the prediction the
+// plan reports and meets is the interpolation's times 1 + compression_share.
+//
 // Order and leaf size: the cheapest order whose predicted error is <= tol
 // (leaf_size_for_order, cost_model.hpp, balances the near field against M2L); the tree
 // depends on the leaf size and the prediction on the tree, so the choice is
@@ -34,8 +39,11 @@
 //   plan for potentials can give fields too, at the potential's order, and
 //   their error is then not what tol asked.
 // - the kernel is called with r = 0 only for coincident pairs in the near field.
-// - memory: the operators are p^(2D) doubles per level and canonical offset
-//   (at order 10 in 3D, 8 MB each; up to 16 per level).
+// - memory: an operator is 2 p^D k doubles compressed, p^(2D) where
+//   compression does not pay (at order 10 in 3D, ~0.8 MB compressed, 8 MB
+//   not; up to 16 per level).
+// - planning at high order is mostly the compression (~0.3 s per level at
+//   order 9 in 3D on one core).
 #pragma once
 
 #include <algorithm>
@@ -51,6 +59,7 @@
 #include "partc/fast_sum/error_model.hpp"
 #include "partc/fast_sum/fmm_tree.hpp"
 #include "partc/fast_sum/interactions.hpp"
+#include "partc/fast_sum/low_rank.hpp"
 #include "partc/fast_sum/m2l_operators.hpp"
 #include "partc/parallel.hpp"
 #include "partc/vec.hpp"
@@ -99,6 +108,7 @@ class Fmm {
       interactions_ = find_interactions(target_tree_, source_tree_, symmetries_, nodes());
       predicted_ =
           predict_errors<D>(kernel_, target_tree_, source_tree_, interactions_, accuracy.field);
+      for (double& e : predicted_) e *= 1 + compression_share;
     };
     auto cheapest = [&] {
       for (int p = 2; p < max_order(D); ++p)
@@ -113,7 +123,7 @@ class Fmm {
       // Settle upwards on the last tree, so that the prediction meets tol.
       while (order_ < max_order(D) && predicted_error() > accuracy.tol) plan(order_ + 1);
     }
-    build_operators();
+    build_operators(accuracy.field);
     stats_.order = order_;
     stats_.source_levels = source_tree_.levels();
     stats_.target_levels = target_tree_.levels();
@@ -124,8 +134,10 @@ class Fmm {
     stats_.p2l_pairs = interactions_.p2l_pairs;
     stats_.near_point_pairs = interactions_.near_point_pairs;
     stats_.operators = operators_.size();
-    stats_.operator_bytes =
-        double(operators_.size()) * double(nodes()) * double(nodes()) * sizeof(double);
+    for (std::size_t g = 0; g < operators_.size(); ++g)
+      stats_.operator_bytes +=
+          double(operators_[g].size() + compressed_[g].left.size() + compressed_[g].right.size()) *
+          sizeof(double);
     stats_.plan_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -162,12 +174,22 @@ class Fmm {
     return node_coordinates_[std::size_t(m) * D + std::size_t(d)];
   }
 
-  void build_operators() {
+  // Each group's operator, compressed (low_rank.hpp) where that pays within
+  // one evaluation (cost_model.hpp): its dropped singular values, relative to
+  // the largest, are below compression_share of the interpolation's
+  // predicted error.
+  void build_operators(bool field) {
     operators_.assign(interactions_.m2l.size(), {});
+    compressed_.assign(interactions_.m2l.size(), {});
+    const double eps = compression_share / (1 + compression_share) * predicted_error();
     parallel_for(operators_.size(), LoopWork::blocks, [&](std::size_t g) {
       const M2lGroup& group = interactions_.m2l[g];
       operators_[g] =
           m2l_matrix<D>(kernel_, basis_, target_tree_.box_side(group.level), group.code);
+      const std::size_t products = group.pairs.size() * (field ? D + 1 : 1);
+      if (eps > 0 && compression_pays(D, std::size_t(nodes()), products))
+        compressed_[g] = compress(operators_[g], nodes(), eps);
+      if (compressed_[g].rank > 0) operators_[g] = {};
     });
     node_coordinates_.resize(std::size_t(nodes()) * D);
     for (int m = 0; m < nodes(); ++m)
@@ -233,8 +255,9 @@ class Fmm {
 
     // Far field into the target boxes' local expansions: M2L, then P2L.
     std::vector<double> local(tt.boxes.size() * C * n, 0.0);
+    std::vector<double> panels_in, panels_out;
     for (std::size_t g = 0; g < interactions_.m2l.size(); ++g)
-      apply_m2l<Field>(g, multipole, local);
+      apply_m2l<Field>(g, multipole, local, panels_in, panels_out);
     parallel_for(tt.boxes.size(), LoopWork::blocks, [&](std::size_t t) {
       const auto& list = interactions_.p2l[t];
       if (list.empty()) return;
@@ -333,18 +356,18 @@ class Fmm {
   // columns of panels, multiply them by the group's operator, and add the
   // (permuted back) products to the targets' locals, pair by pair in order.
   // A potential takes one column per pair, a field D + 1 (W, then b_d W).
+  // x and z: the panels, kept by the caller from group to group.
   template <bool Field>
-  void apply_m2l(std::size_t g, const std::vector<double>& multipole,
-                 std::vector<double>& local) const {
+  void apply_m2l(std::size_t g, const std::vector<double>& multipole, std::vector<double>& local,
+                 std::vector<double>& x, std::vector<double>& z) const {
     constexpr std::size_t C = Field ? D : 1;
     const M2lGroup& group = interactions_.m2l[g];
-    const std::vector<double>& op = operators_[g];
+    const LowRank& low = compressed_[g];
     const std::size_t n = std::size_t(nodes());
     constexpr std::size_t columns = Field ? D + 1 : 1;
     const std::size_t chunk_pairs =
-        std::max<std::size_t>(1, (4096 / columns / panel_width) * panel_width);
+        std::max<std::size_t>(1, (1024 / columns / panel_width) * panel_width);
     const double h = target_tree_.box_side(group.level);
-    std::vector<double> x, z;
     for (std::size_t first = 0; first < group.pairs.size(); first += chunk_pairs) {
       const std::size_t pairs = std::min(chunk_pairs, group.pairs.size() - first);
       const std::size_t panels = (pairs * columns + panel_width - 1) / panel_width;
@@ -367,8 +390,12 @@ class Fmm {
         }
       });
       parallel_for(panels, LoopWork::blocks, [&](std::size_t panel) {
-        multiply_panel(op.data(), int(n), x.data() + panel * n * panel_width,
-                       z.data() + panel * n * panel_width);
+        double* in = x.data() + panel * n * panel_width;
+        double* out = z.data() + panel * n * panel_width;
+        if (low.rank == 0) return multiply_panel(operators_[g].data(), int(n), int(n), in, out);
+        std::vector<double> coefficients(std::size_t(low.rank) * panel_width);
+        multiply_panel(low.right.data(), low.rank, int(n), in, coefficients.data());
+        multiply_panel(low.left.data(), int(n), low.rank, coefficients.data(), out);
       });
       // Runs of pairs with one target, each run added in order by one thread.
       std::vector<std::size_t> runs{0};
@@ -409,7 +436,8 @@ class Fmm {
   Tree<D> source_tree_, target_tree_;
   Interactions interactions_;
   std::vector<double> predicted_;                // by order
-  std::vector<std::vector<double>> operators_;   // one per M2L group
+  std::vector<std::vector<double>> operators_;   // one per M2L group, empty if compressed
+  std::vector<LowRank> compressed_;              // one per M2L group, rank 0 if not
   std::array<std::vector<double>, 2> transfer_;  // child_transfer(0), child_transfer(1)
   std::vector<double> node_coordinates_;         // node m's along d at m * D + d
   FmmStats stats_;

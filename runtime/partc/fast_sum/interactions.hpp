@@ -82,7 +82,7 @@ Interactions find_interactions(const Tree<D>& targets, const Tree<D>& sources,
     };
     if (gap_in_cells(tb, sb) >= 1) {
       if (tb.level == sb.level) {
-        if (tb.leaf() && direct_is_cheaper(tb.count, sb.count, nodes)) return near(t, s);
+        if (tb.leaf() && direct_is_cheaper(D, tb.count, sb.count, nodes)) return near(t, s);
         std::array<std::int64_t, D> offset;
         for (std::size_t d = 0; d < D; ++d) offset[d] = sb.cell[d] - tb.cell[d];
         const auto canonical = symmetries.canonicalize(offset);

@@ -10,10 +10,12 @@
 //   K_o[m][n] = K_o'[pi(m)][pi(n)],   pi the node permutation of R,
 // and only the canonical offsets need a matrix: 16 per level in 3D instead of
 // 316 (Messner, Schanz & Darve 2012). Applying K_o to a multipole W is then:
-// permute W by pi, multiply by K_o', read the result through pi.
+// permute W by pi, multiply by K_o', read the result through pi. Where it
+// pays, K_o' is then compressed to two thin factors (low_rank.hpp), and the
+// product is two multiply_panel calls through k coefficients.
 //
 // Surprises:
-// - multiply_panels does the GEMM itself (register-blocked, 4 rows by 8
+// - multiply_panel does the GEMM itself (register-blocked, 4 rows by 8
 //   columns): Eigen's product chooses its blocking from its thread count, so
 //   its sums are not bitwise the same for every thread count; here every
 //   entry is summed over k in order, whatever runs it.
@@ -145,19 +147,21 @@ inline double multiply_add(double a, double b, double c) {
 #endif
 }
 
-// z = k x for one panel: k is n x n row-major, x and z are n x panel_width
-// row-major (the panel's 8 columns side by side). Four rows of k at a time
-// keep 32 sums in registers; the column loop is what vectorises.
-inline void multiply_panel(const double* k, int n, const double* x, double* z) {
+// z = k x for one panel: k is rows x cols row-major, x is cols x
+// panel_width and z rows x panel_width, row-major (the panel's 8 columns side
+// by side). Four rows of k at a time keep 32 sums in registers; the column
+// loop is what vectorises.
+inline void multiply_panel(const double* k, int rows, int cols, const double* x, double* z) {
   constexpr int w = panel_width;
+  const std::size_t n = std::size_t(cols);
   int row = 0;
-  for (; row + 4 <= n; row += 4) {
+  for (; row + 4 <= rows; row += 4) {
     double sum[4][w] = {};
-    const double* k0 = k + std::size_t(row) * std::size_t(n);
+    const double* k0 = k + std::size_t(row) * n;
     const double* k1 = k0 + n;
     const double* k2 = k1 + n;
     const double* k3 = k2 + n;
-    for (int j = 0; j < n; ++j) {
+    for (int j = 0; j < cols; ++j) {
       const double* xj = x + std::size_t(j) * w;
       for (int c = 0; c < w; ++c) {
         sum[0][c] = multiply_add(k0[j], xj[c], sum[0][c]);
@@ -169,10 +173,10 @@ inline void multiply_panel(const double* k, int n, const double* x, double* z) {
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < w; ++c) z[std::size_t(row + r) * w + std::size_t(c)] = sum[r][c];
   }
-  for (; row < n; ++row) {
+  for (; row < rows; ++row) {
     double sum[w] = {};
-    const double* kr = k + std::size_t(row) * std::size_t(n);
-    for (int j = 0; j < n; ++j)
+    const double* kr = k + std::size_t(row) * n;
+    for (int j = 0; j < cols; ++j)
       for (int c = 0; c < w; ++c)
         sum[c] = multiply_add(kr[j], x[std::size_t(j) * w + std::size_t(c)], sum[c]);
     for (int c = 0; c < w; ++c) z[std::size_t(row) * w + std::size_t(c)] = sum[c];
