@@ -26,12 +26,8 @@
 // incomplete_lut (dual-threshold incomplete LU, for nonsymmetric A);
 // incomplete_cholesky (for SPD A, with CG).
 //
-// Convergence means the recomputed ||A x - b|| / ||b|| is at most tolerance.
-// Eigen's methods stop on their own figure instead: CG's and BiCGSTAB's is
-// updated recursively and can drift below the true residual, GMRES's is the
-// left-preconditioned residual relative to the starting one. So when a method
-// stops content but the true residual is still too large, it is restarted from
-// its x (where its residual is exact again) for the iterations left.
+// Convergence means the recomputed ||A x - b|| / ||b|| is at most tolerance,
+// not the method's own figure (krylov_restarts.hpp).
 //
 // Surprises:
 // - max_iterations 0 means 2 n, Eigen's default (CG needs at most n in exact
@@ -54,6 +50,7 @@
 #include <type_traits>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "partc/solve/krylov_restarts.hpp"
 #include "partc/solve/solve_result.hpp"
 
 namespace partc {
@@ -117,17 +114,14 @@ void configure_preconditioner(Solver& solver, const SparseSolveOptions& options)
   }
 }
 
-// Runs `solver` to convergence or the iteration limit, restarting while its
-// own estimate claims convergence that the true residual denies (see header).
+// Builds the preconditioner, then runs `solver` to the tolerance (krylov_restarts.hpp).
 template <class Solver>
 void run_krylov(Solver& solver, const SparseMatrixCRS& A, const Eigen::VectorXd& b,
                 const SparseSolveOptions& options, SolveResult& result) {
   configure_preconditioner(solver, options);
   solver.compute(A);
-  const Eigen::Index limit = options.max_iterations > 0 ? options.max_iterations : 2 * A.cols();
-  Eigen::Index used = 0;
-  result.residual = relative_residual(A, result.x, b);
   if (solver.info() != Eigen::Success) {
+    result.residual = relative_residual(A, result.x, b);
     result.converged = false;
     result.iterations = 0;
     // Eigen's ILUT fails only on a zero row; its IC after shifting the
@@ -140,25 +134,9 @@ void run_krylov(Solver& solver, const SparseMatrixCRS& A, const Eigen::VectorXd&
         ")";
     return;
   }
-  while (result.residual > options.tolerance && used < limit) {
-    // Eigen's GMRES measures its residual against the one it starts from, the
-    // others against b: GMRES is asked for the reduction still missing.
-    solver.setTolerance(options.method == KrylovMethod::gmres
-                            ? std::min(1.0, options.tolerance / result.residual)
-                            : options.tolerance);
-    solver.setMaxIterations(limit - used);
-    result.x = solver.solveWithGuess(b, result.x);
-    used += solver.iterations();
-    result.residual = relative_residual(A, result.x, b);
-    if (solver.info() != Eigen::Success || solver.iterations() == 0) break;
-  }
-  result.iterations = used;
-  result.converged = result.residual <= options.tolerance;
-  if (!result.converged)
-    result.warning = "solve " + options.name + ": " + method_name(options) +
-                     " did not converge: relative residual " + scientific(result.residual) +
-                     " after " + std::to_string(used) + " iterations (limit " +
-                     std::to_string(limit) + "), tolerance " + scientific(options.tolerance);
+  const Eigen::Index limit = options.max_iterations > 0 ? options.max_iterations : 2 * A.cols();
+  iterate_to_tolerance(solver, A, b, options.tolerance, limit,
+                       options.method == KrylovMethod::gmres, method_name(options), result);
 }
 
 template <class Preconditioner>
