@@ -2,14 +2,17 @@
 // each into what the method needs: a kernel of |dx| and a charge per j.
 //
 // It runs after the neighbourhood analysis, which alone knows which sums are
-// dense, and before code generation, which emits the charges, the kernel as
-// a function of r = |dx|, and one call of partc::fast_sum::Fmm per sum. The
-// term is split at its top-level products and quotients; each factor must
-// read either |dx| or dot(dx, dx) (the kernel) or particle j (the charge), and at most one
-// factor may be dx itself (a field, sum(j, k(|dx|) * dx * q[j])). A sum the
-// schedule asks to run fast that does not factor so is an error naming the
-// factor, never a silent direct sum: the user asked for a cost and accuracy
-// the direct sum does not have.
+// dense, and after the linear operators' (a solve scheduled dense = fmm is
+// solved matrix-free, and each of its terms is factored from its
+// coefficient, w[j] taken as 1), and before code generation, which emits the
+// charges, the kernel as a function of r = |dx|, and one call of
+// partc::fast_sum::Fmm per sum. The term is split at its top-level products
+// and quotients; each factor must read either |dx| or dot(dx, dx) (the
+// kernel) or particle j (the charge), and at most one factor may be dx
+// itself (a field, sum(j, k(|dx|) * dx * q[j])). A sum the schedule asks to
+// run fast that does not factor so is an error naming the factor, never a
+// silent direct sum: the user asked for a cost and accuracy the direct sum
+// does not have.
 #include "analysis/fast_sums.hpp"
 
 #include <vector>
@@ -162,14 +165,94 @@ class NormAsR : public ir::Mutator {
   }
 };
 
+
+// Factors the dense sum `acc` of `st`, whose term is `term` (its body; in a
+// solve, its coefficient with w[j] taken as 1, which may be null for 1),
+// into the fact, or adds the error that stops it.
+void factor_sum(const ir::Model& model, const ir::Statement& st, const ir::Accumulate& acc,
+                const Expr& term, const std::string& source, std::vector<Diagnostic>& errors,
+                FastSumReport& report) {
+  const std::string heading = ir::accumulation_heading(model, st, acc);
+  if (acc.reduction != ir::Reduction::Sum) {
+    errors.push_back({acc.loc, "dense = fmm sums, and this is a " + heading,
+                      "schedule min, max and count in a statement of their own"});
+    return;
+  }
+  if (st.observable >= 0) {
+    errors.push_back({acc.loc, "dense = fmm gives one sum per particle, not an observable",
+                      "compute the sum into a particle variable, then reduce it"});
+    return;
+  }
+  if (acc.condition && !excludes_only_coincident(acc.condition)) {
+    errors.push_back({acc.condition->loc,
+                      "a fast sum's condition may only leave out coincident pairs",
+                      "write |dx| > 0, or no condition"});
+    return;
+  }
+  Factorer factorer(source, acc.label);
+  if (term) factorer.split(term, false);
+  Factors& f = factorer.factors;
+  if (f.refused.empty() && f.kernel.empty() && f.kernel_divisors.empty()) {
+    f.refused = "it reads no |dx|: nothing to sum fast";
+    f.refused_at = acc.body->loc;
+  }
+  if (!f.refused.empty()) {
+    errors.push_back({f.refused_at, "this term cannot be summed fast: " + f.refused,
+                      st.solve_operator
+                          ? "a fast solve's term is k(|dx|) * q[j] * w[j], k of |dx| (params, "
+                            "consts) alone, q of j alone"
+                          : "a fast sum's term is k(|dx|) * q[j] or k(|dx|) * dx * q[j], k of "
+                            "|dx| (params, consts) alone, q of j alone"});
+    return;
+  }
+  if (st.solve_operator && f.dx == 1) {
+    errors.push_back({acc.body->loc, "a solve's fast sums are potentials, and this is a field",
+                      "a vec term has no place in a scalar unknown's equation"});
+    return;
+  }
+  FastSumFact fact;
+  fact.kernel = SquaredNormAsProduct().mutate(quotient(f.kernel, f.kernel_divisors, acc.body->loc));
+  fact.charge = quotient(f.charge, f.charge_divisors, acc.body->loc);
+  if (f.negated)
+    fact.charge =
+        std::make_shared<ir::Unary>(ir::Type::Real, ir::UnaryOp::Neg, fact.charge, acc.body->loc);
+  fact.field = f.dx == 1;
+  fact.skips_coincident = acc.condition != nullptr;
+  fact.sources = st.labels[acc.label].set;
+  fact.targets = st.set;
+  fact.in_solve = st.solve_operator != nullptr;
+  if (!fact.in_solve) fact.tolerance = st.schedule.tolerance;
+  fact.order = st.schedule.order;
+  fact.line = st.line;
+  auto text = [&](const Expr& e) {
+    return std::string(source.substr(e->loc.begin, e->loc.end - e->loc.begin));
+  };
+  const std::string knob =
+      fact.order ? "order = " + text(fact.order)
+      : fact.in_solve
+          ? "tol = " + (st.schedule.tolerance ? text(st.schedule.tolerance) : std::string("1e-8")) +
+                " / 100, a hundredth of the solver's"
+          : "tol = " + (fact.tolerance ? text(fact.tolerance) : std::string("1e-6 (default)"));
+  const std::string charge = ir::to_string(fact.charge, model, st.labels);
+  fact.reason =
+      "fast multipole method (schedule: dense = fmm, " + knob + "): " +
+      (fact.in_solve ? "each GMRES product, k(|dx|) * q[j] * x[j] for the Krylov vector x,"
+       : fact.field  ? "a field, k(|dx|) * dx * q[j]"
+                     : "a potential, k(|dx|) * q[j]") +
+      " with k(r) = " + ir::to_string(NormAsR().mutate(fact.kernel), model, st.labels) +
+      (fact.skips_coincident ? " (0 at r = 0)" : "") + " and q[j] = " + charge;
+  report[acc.id] = std::move(fact);
+}
+
 }  // namespace
 
 FastSumReport find_fast_sums(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
-                             const std::string& source) {
+                             const LinearOperatorReport& operators, const std::string& source) {
   FastSumReport report;
   std::vector<Diagnostic> errors;
-  for (const ir::Stage& stage : model.stages)
-    for (const ir::Statement& st : stage.statements) {
+  for (std::size_t g = 0; g < model.stages.size(); ++g)
+    for (std::size_t k = 0; k < model.stages[g].statements.size(); ++k) {
+      const ir::Statement& st = model.stages[g].statements[k];
       if (st.schedule.dense != ir::DenseMethod::Fmm) continue;
       if (ir::Domain::any(model.domain.periodic)) {
         errors.push_back({st.schedule.loc, "dense = fmm needs a domain without periodic axes",
@@ -178,66 +261,30 @@ FastSumReport find_fast_sums(const ir::Model& model, const NeighbourhoodReport& 
         continue;
       }
       bool found = false;
-      for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
-        if (neighbourhoods.at(acc->id).kind != SearchFact::Kind::Dense) continue;
-        found = true;
-        const std::string heading = ir::accumulation_heading(model, st, *acc);
-        if (acc->reduction != ir::Reduction::Sum) {
-          errors.push_back({acc->loc, "dense = fmm sums, and this is a " + heading,
-                            "schedule min, max and count in a statement of their own"});
-          continue;
+      if (st.solve_operator) {
+        for (const ir::Accumulate* acc : ir::accumulations_in(st.value))
+          if (neighbourhoods.at(acc->id).kind == SearchFact::Kind::Dense)
+            errors.push_back({acc->loc, "a matrix-free solve's right side has a dense sum",
+                              "compute it into a variable in a statement before the solve"});
+        for (const OperatorTerm& t :
+             operators.at({static_cast<int>(g), static_cast<int>(k)}).terms) {
+          if (!t.sum) continue;
+          if (neighbourhoods.at(t.sum->id).kind != SearchFact::Kind::Dense) {
+            errors.push_back({t.sum->loc, "a matrix-free solve sums over all pairs, and this "
+                                          "sum has a cutoff",
+                              "its products are fast sums over all pairs; drop dense = fmm to "
+                              "assemble the matrix"});
+            continue;
+          }
+          found = true;
+          factor_sum(model, st, *t.sum, t.coefficient, source, errors, report);
         }
-        if (st.observable >= 0) {
-          errors.push_back({acc->loc, "dense = fmm gives one sum per particle, not an observable",
-                            "compute the sum into a particle variable, then reduce it"});
-          continue;
+      } else {
+        for (const ir::Accumulate* acc : ir::accumulations_in(st.value)) {
+          if (neighbourhoods.at(acc->id).kind != SearchFact::Kind::Dense) continue;
+          found = true;
+          factor_sum(model, st, *acc, acc->body, source, errors, report);
         }
-        if (acc->condition && !excludes_only_coincident(acc->condition)) {
-          errors.push_back({acc->condition->loc,
-                            "a fast sum's condition may only leave out coincident pairs",
-                            "write |dx| > 0, or no condition"});
-          continue;
-        }
-        Factorer factorer(source, acc->label);
-        factorer.split(acc->body, false);
-        Factors& f = factorer.factors;
-        if (f.refused.empty() && f.kernel.empty() && f.kernel_divisors.empty()) {
-          f.refused = "it reads no |dx|: nothing to sum fast";
-          f.refused_at = acc->body->loc;
-        }
-        if (!f.refused.empty()) {
-          errors.push_back({f.refused_at, "this term cannot be summed fast: " + f.refused,
-                            "a fast sum's term is k(|dx|) * q[j] or k(|dx|) * dx * q[j], k of "
-                            "|dx| (params, consts) alone, q of j alone"});
-          continue;
-        }
-        FastSumFact fact;
-        fact.kernel =
-            SquaredNormAsProduct().mutate(quotient(f.kernel, f.kernel_divisors, acc->body->loc));
-        fact.charge = quotient(f.charge, f.charge_divisors, acc->body->loc);
-        if (f.negated)
-          fact.charge = std::make_shared<ir::Unary>(ir::Type::Real, ir::UnaryOp::Neg, fact.charge,
-                                                    acc->body->loc);
-        fact.field = f.dx == 1;
-        fact.skips_coincident = acc->condition != nullptr;
-        fact.sources = st.labels[acc->label].set;
-        fact.targets = st.set;
-        fact.tolerance = st.schedule.tolerance;
-        fact.order = st.schedule.order;
-        fact.line = st.line;
-        auto text = [&](const Expr& e) {
-          return std::string(source.substr(e->loc.begin, e->loc.end - e->loc.begin));
-        };
-        fact.reason =
-            std::string("fast multipole method (schedule: dense = fmm") +
-            (fact.order ? ", order = " + text(fact.order)
-                        : ", tol = " + (fact.tolerance ? text(fact.tolerance)
-                                                       : std::string("1e-6 (default)"))) +
-            "): " + (fact.field ? "a field, k(|dx|) * dx * q[j]" : "a potential, k(|dx|) * q[j]") +
-            " with k(r) = " + ir::to_string(NormAsR().mutate(fact.kernel), model, st.labels) +
-            (fact.skips_coincident ? " (0 at r = 0)" : "") +
-            " and q[j] = " + ir::to_string(fact.charge, model, st.labels);
-        report[acc->id] = std::move(fact);
       }
       if (!found)
         errors.push_back(

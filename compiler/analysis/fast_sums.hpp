@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/linear_operator.hpp"
 #include "analysis/neighbourhood.hpp"
 #include "ir/ir.hpp"
 
@@ -17,8 +18,9 @@ struct FastSumFact {
   ir::Expr charge;  // reads j's variables (and params, consts, observables), no dx
   bool field = false;
   bool skips_coincident = false;  // the condition is |dx| > 0: k(0) counts as 0
+  bool in_solve = false;          // a term of a solve's operator: the charge multiplies w[j]
   int sources = 0, targets = 0;   // sets
-  ir::Expr tolerance;             // requested relative L2 error; null with an order
+  ir::Expr tolerance;             // requested relative L2 error; null with an order or in a solve
   ir::Expr order;                 // Chebyshev nodes per axis; null: from the tolerance
   int line = 0;                   // of the sum, for reports
   std::string reason;             // for --explain
@@ -29,8 +31,9 @@ using FastSumReport = std::map<int, FastSumFact>;
 
 // Throws CompileError where `dense = fmm` is asked of a statement with a
 // dense sum it cannot take (saying which factor stops it), of a statement
-// without a dense sum, or in a periodic domain.
+// without a dense sum, or in a periodic domain. A solve's dense operator
+// terms are factored from their coefficients (the linear operators' facts).
 FastSumReport find_fast_sums(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,
-                             const std::string& source);
+                             const LinearOperatorReport& operators, const std::string& source);
 
 }  // namespace partc

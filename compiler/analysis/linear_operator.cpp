@@ -226,7 +226,9 @@ LinearOperatorReport find_linear_operators(const ir::Model& model,
           fact.sparse &= neighbourhoods.at(t.sum->id).kind == SearchFact::Kind::Neighbours;
         }
       const ir::SolverChoice solver = st.schedule.solver;
-      if (!fact.sparse && solver != ir::SolverChoice::Auto && solver != ir::SolverChoice::Lu)
+      const bool matrix_free = st.schedule.dense == ir::DenseMethod::Fmm;
+      if (!fact.sparse && !matrix_free && solver != ir::SolverChoice::Auto &&
+          solver != ir::SolverChoice::Lu)
         throw CompileError(Diagnostic{
             st.schedule.loc,
             std::string("solver ") + ir::solver_choice_name(solver) + " needs a sparse operator",
@@ -235,7 +237,9 @@ LinearOperatorReport find_linear_operators(const ir::Model& model,
       const bool dense = !fact.sparse || solver == ir::SolverChoice::Lu;
       fact.reason = std::to_string(fact.terms.size()) + " term(s), " + std::to_string(sums) +
                     " of them sums over j; " +
-                    (!fact.sparse ? "a sum without a cutoff: a dense matrix, solved by LU"
+                    (matrix_free ? "dense = fmm: no matrix, GMRES whose products are fast "
+                                   "sums, preconditioned by blocks of near points"
+                     : !fact.sparse ? "a sum without a cutoff: a dense matrix, solved by LU"
                      : dense      ? "every sum has a cutoff, but the schedule says lu: dense LU"
                                   : "every sum has a cutoff: a sparse matrix (neighbours only), "
                                     "solved by an iterative method");

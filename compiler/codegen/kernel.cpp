@@ -286,11 +286,13 @@ void ModelEmitter::kernel(const Kernel& k) {
     dx.visit(acc->body);
     const SearchFact& fact = facts_.neighbourhoods.at(acc->id);
     // A search over another set is asked from p[i]; one over the home set and Verlet
-    // lists by i alone; a dense loop computes dx itself.
+    // lists by i alone; a dense loop computes dx itself, as does a fast
+    // solve's entry for its preconditioner (a fast sum alone does not).
     if (fact.kind == SearchFact::Kind::Neighbours && !st.schedule.skin &&
         st.labels[acc->label].set != home)
       needed.insert({home, kPosition});
-    if (fact.kind == SearchFact::Kind::Dense && dx.dx && !facts_.fast_sums.count(acc->id)) {
+    if (fact.kind == SearchFact::Kind::Dense && dx.dx &&
+        (!facts_.fast_sums.count(acc->id) || st.solve_operator)) {
       needed.insert({home, kPosition});
       needed.insert({st.labels[acc->label].set, kPosition});
     }

@@ -275,6 +275,10 @@ void ModelEmitter::header() {
       headers.push_back(h);
   if (!fast_sum_records_.empty())
     for (const char* h : {"fast_sum/contract.hpp", "fast_sum/fmm.hpp"}) headers.push_back(h);
+  if (std::any_of(solve_results_.begin(), solve_results_.end(), [](const auto& solve) {
+        return solve.first->schedule.dense == DenseMethod::Fmm;
+      }))
+    headers.push_back("solve/matrix_free_solve.hpp");
   std::sort(headers.begin(), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
   line("");

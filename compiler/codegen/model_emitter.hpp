@@ -271,6 +271,17 @@ class ModelEmitter {
   // codegen/solve.cpp: a solve statement's system, assembled and solved.
   void solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
                   const std::string& count);
+  // The conditions on i under which an operator term applies ("" for always).
+  std::string operator_guard(const OperatorTerm& t, const ExpressionNames& names) const;
+  // Emits the locals a sum term's coefficient reads (dx, dx_norm) for row i
+  // and column j, and returns the coefficient times the term's scale.
+  std::string operator_entry(const OperatorTerm& t, const Statement& st,
+                             const ExpressionNames& names, const std::string& i,
+                             const std::string& j);
+  // codegen/matrix_free_solve.cpp: a solve with dense = fmm, by GMRES whose
+  // products are fast sums.
+  void matrix_free_solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
+                              const std::string& count);
 
   // ---- state ------------------------------------------------------------
 

@@ -13,6 +13,7 @@ namespace partc::codegen {
 void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
                               const std::string& count) {
   const Statement& st = *k.st;
+  if (st.schedule.dense == DenseMethod::Fmm) return matrix_free_solve_body(k, names, locals, count);
   const LinearOperatorFact& op = facts_.linear_operators.at(k.position);
   const bool dense = !op.sparse || st.schedule.solver == SolverChoice::Lu;
   const std::string unknown = m_.sets[st.set].vars[st.var].name;
@@ -39,49 +40,34 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
   // Consecutive terms under the same conditions share one if.
   std::string open_guard;
   for (const OperatorTerm& t : op.terms) {
-    std::vector<std::string> guards;
-    for (const auto& [condition, wanted] : t.guards)
-      guards.push_back(wanted ? emit_operand(condition, BinaryOp::And, m_, names)
-                              : "!" + emit_operand(condition, BinaryOp::Mul, m_, names));
-    const std::string guard = fmt::format("{}", fmt::join(guards, " && "));
+    const std::string guard = operator_guard(t, names);
     if (guard != open_guard) {
       if (!open_guard.empty()) line("}");
       if (!guard.empty()) linef("if ({}) {{", guard);
       open_guard = guard;
     }
-    const std::string scale = t.scale ? emit_operand(t.scale, BinaryOp::Mul, m_, names) : "";
     if (!t.sum) {
-      line(add(i, scale.empty() ? "1.0" : scale));
+      line(add(i, t.scale ? emit_operand(t.scale, BinaryOp::Mul, m_, names) : "1.0"));
     } else {
       const Accumulate& acc = *t.sum;
       const std::string j = names.labels[acc.label];
       UsesDx dx;
       dx.visit(acc.condition);
       dx.visit(t.coefficient);
-      ExpressionNames inner = names;
-      inner.dx_norm = dx.norm ? "dx_norm" : "";
-      std::string value =
-          t.coefficient ? emit_operand(t.coefficient, BinaryOp::Mul, m_, inner) : "";
-      if (!scale.empty()) value = value.empty() ? scale : scale + " * " + value;
-      if (value.empty()) value = "1.0";
-      const std::string entry = add(j, value);
-      if (op.sparse) {
+      if (op.sparse)
         linef("{}.for_each_near({}, [&](std::size_t {}, const Vec&{}) {{", search_for(acc.id), i, j,
               dx.dx ? " dx" : "");
-      } else {
-        linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", j, count);
-        if (dx.dx) {
-          const std::string p = names.array(st.set, kPosition);
-          linef("const Vec dx = domain_.minimum_image({} - {});",
-                emit_load(m_, st.set, kPosition, p + "[" + j + "]"),
-                emit_load(m_, st.set, kPosition, p + "[" + i + "]"));
-        }
-      }
-      if (dx.norm) line("const double dx_norm = partc::norm(dx);");
-      if (acc.condition)
-        linef("if ({}) {}", expression(acc.condition, inner), entry);
       else
+        linef("for (std::size_t {0} = 0; {0} < {1}; ++{0}) {{", j, count);
+      const std::string value = operator_entry(t, st, names, i, op.sparse ? "" : j);
+      const std::string entry = add(j, value);
+      if (acc.condition) {
+        ExpressionNames inner = names;
+        inner.dx_norm = dx.norm ? "dx_norm" : "";
+        linef("if ({}) {}", expression(acc.condition, inner), entry);
+      } else {
         line(entry);
+      }
       line(op.sparse ? "});" : "}");
     }
   }
@@ -126,6 +112,37 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
       "}});",
       count, i, target, i, result, i);
   linef("{}.x = Eigen::VectorXd();  // the values live in {} now", result, unknown);
+}
+
+std::string ModelEmitter::operator_guard(const OperatorTerm& t,
+                                         const ExpressionNames& names) const {
+  std::vector<std::string> guards;
+  for (const auto& [condition, wanted] : t.guards)
+    guards.push_back(wanted ? emit_operand(condition, BinaryOp::And, m_, names)
+                            : "!" + emit_operand(condition, BinaryOp::Mul, m_, names));
+  return fmt::format("{}", fmt::join(guards, " && "));
+}
+
+// j empty: dx comes from the search (its callback's argument).
+std::string ModelEmitter::operator_entry(const OperatorTerm& t, const Statement& st,
+                                         const ExpressionNames& names, const std::string& i,
+                                         const std::string& j) {
+  UsesDx dx;
+  dx.visit(t.sum->condition);
+  dx.visit(t.coefficient);
+  if (dx.dx && !j.empty()) {
+    const std::string p = names.array(st.set, kPosition);
+    linef("const Vec dx = domain_.minimum_image({} - {});",
+          emit_load(m_, st.set, kPosition, p + "[" + j + "]"),
+          emit_load(m_, st.set, kPosition, p + "[" + i + "]"));
+  }
+  if (dx.norm) line("const double dx_norm = partc::norm(dx);");
+  ExpressionNames inner = names;
+  inner.dx_norm = dx.norm ? "dx_norm" : "";
+  std::string value = t.coefficient ? emit_operand(t.coefficient, BinaryOp::Mul, m_, inner) : "";
+  const std::string scale = t.scale ? emit_operand(t.scale, BinaryOp::Mul, m_, names) : "";
+  if (!scale.empty()) value = value.empty() ? scale : scale + " * " + value;
+  return value.empty() ? "1.0" : value;
 }
 
 }  // namespace partc::codegen

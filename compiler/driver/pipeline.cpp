@@ -48,7 +48,8 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   // The schedule can only be judged once neighbourhood sums are known; so
   // can which dense sums it runs fast, and with what kernel and charges.
   check_schedule(c.model, c.facts.neighbourhoods);
-  c.facts.fast_sums = find_fast_sums(c.model, c.facts.neighbourhoods, file.text());
+  c.facts.fast_sums =
+      find_fast_sums(c.model, c.facts.neighbourhoods, c.facts.linear_operators, file.text());
   // Which sums share a search, and at what radius: needs the schedule checked.
   c.facts.searches = plan_searches(c.model, c.facts.neighbourhoods, file.text());
   // What only the state after a step needs (an observable nothing in a step

@@ -411,9 +411,13 @@ void Sema::check_fast_sum_options(const ir::Statement& st, const ast::ScheduleIt
     return item.loc;
   };
   const bool fmm = st.schedule.dense == ir::DenseMethod::Fmm;
-  if (fmm && st.solve_operator)
-    fail(option_loc("dense"), "a solve's dense sums are assembled into its matrix, not summed fast",
-         "a matrix-free solve with the fast sum is not supported yet; drop dense = fmm");
+  if (fmm && st.solve_operator && st.schedule.solver != ir::SolverChoice::Auto &&
+      st.schedule.solver != ir::SolverChoice::Gmres)
+    fail(option_loc("solver"),
+         "a solve with dense = fmm is matrix-free, and " +
+             std::string(ir::solver_choice_name(st.schedule.solver)) + " needs its matrix",
+         "dense = fmm solves by GMRES, whose products are the fast sum; drop the solver, or "
+         "drop dense = fmm to assemble the matrix");
   if (st.schedule.tolerance && !fmm && !st.solve_operator)
     fail(option_loc("tol"),
          "'tol' schedules a solve or a fast sum, and " + quoted(st.name) + " is neither",
@@ -422,7 +426,8 @@ void Sema::check_fast_sum_options(const ir::Statement& st, const ast::ScheduleIt
     fail(option_loc("order"), "'order' schedules a fast sum, and " + quoted(st.name) +
                                   " has no dense = fmm",
          "dense = fmm, order = 8: Chebyshev nodes per axis of the fast multipole method");
-  if (st.schedule.order && st.schedule.tolerance)
+  // A solve's tol is its solver's: the fast sum's follows from it, or from an order.
+  if (st.schedule.order && st.schedule.tolerance && !st.solve_operator)
     fail(option_loc("order"), "a fast sum takes a tolerance or an order, not both",
          "tol = 1e-6 lets the cost model choose the order; order = K fixes it");
 }
