@@ -4,7 +4,7 @@ measure an error and the wall time of each run, write a CSV and a log-log
 picture of error against time, and fit the order of the error in the knob.
 
   /usr/bin/python3 examples/sweep.py MODEL.part --knob NAME --values V1,V2,...
-      [--steps K | --steps EXPR] [--set NAME=VALUE]... [--seed S]
+      [--steps K | --steps EXPR] [--set NAME=VALUE | --set NAME=EXPR]... [--seed S]
       ERROR: --error OBS [--error-max OBS] [--error-se OBS] [--expected OBS]
            | --value OBS --exact OBS
            | --value OBS --reference finest
@@ -28,6 +28,10 @@ cell_list) is another kind still to write.
 How long a run is. `--steps K` runs K steps whatever the knob; `--steps EXPR`
 is a Python expression in x, the knob value (`x` for a knob that counts steps
 per period, `round(100 / x)` for a time step to t = 100), rounded to an int.
+So is a `--set NAME=VALUE` whose value is not a number: a param that must
+follow the knob (`--knob n --set width=x+2`, a tank as wide as a column of n
+particles; `--set damping=0.04/x`, a damping per step that keeps its rate per
+unit time as dt = 1/n shrinks).
 
 The error, read from the row the driver logs (`--log FILE.csv`) at the end of
 the run (or at step K with --at-step K). Observables are model-level values,
@@ -185,16 +189,41 @@ def build_program(model, partc, flags, work, cxx_flags):
     return program
 
 
+def evaluate(expression, value):
+    """A Python expression in x, the knob VALUE (math's names, round, int, abs,
+    min and max at hand)."""
+    names = {name: getattr(math, name) for name in dir(math) if not name.startswith("_")}
+    names.update(x=float(value), round=round, int=int, abs=abs, min=min, max=max)
+    try:
+        return eval(expression, {"__builtins__": {}}, names)  # noqa: S307 (the user's command)
+    except Exception as error:
+        raise SweepError(f"'{expression}' at x = {value}: {error}") from error
+
+
 def steps_for(expression, value):
     """The number of steps of the run at knob VALUE: an int, or a Python
     expression in x."""
-    names = {name: getattr(math, name) for name in dir(math) if not name.startswith("_")}
-    names.update(x=float(value), round=round, int=int, abs=abs, min=min, max=max)
-    steps = eval(expression, {"__builtins__": {}}, names)  # noqa: S307 (the user's own command)
+    steps = evaluate(expression, value)
     if abs(steps - round(steps)) > 1e-9 * max(1, abs(steps)):
         raise SweepError(f"--steps {expression} is {steps} at x = {value}, not a whole number "
                          f"of steps: round it (round(...))")
     return int(round(steps))
+
+
+def set_args(assignments, value):
+    """The driver's --set arguments at knob VALUE: a number passes as written,
+    anything else is an expression in x (a param that follows the knob: `width=x+2`;
+    a whole result is written as an int, for an int param)."""
+    args = []
+    for assignment in assignments:
+        name, _, text = assignment.partition("=")
+        try:
+            float(text)
+        except ValueError:
+            result = evaluate(text, value)
+            text = str(int(round(result))) if result == round(result) else repr(float(result))
+        args += ["--set", f"{name}={text}"]
+    return args
 
 
 def read_row(log, at_step):
@@ -361,7 +390,7 @@ def parse_arguments(argv):
     parser.add_argument("--values", required=True, help="comma-separated knob values")
     parser.add_argument("--steps", default="0", help="steps per run: an int, or an expression in x")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="a param fixed for every run")
+                        help="a param for every run: a number, or an expression in x")
     parser.add_argument("--seed", help="the driver's --seed")
     parser.add_argument("--error", help="(a) an observable that is an error")
     parser.add_argument("--error-max", help="(a) the observable giving the max error column")
@@ -429,11 +458,7 @@ def sweep(args):
         args.work = os.path.join(home, "sweep")
     os.makedirs(args.work, exist_ok=True)
     programs = {}
-    fixed = []
-    for assignment in args.set:
-        fixed += ["--set", assignment]
-    if args.seed is not None:
-        fixed += ["--seed", args.seed]
+    seed = ["--seed", args.seed] if args.seed is not None else []
     threads = args.threads
     commit = git_commit()
     stem = os.path.splitext(os.path.basename(args.model))[0]
@@ -451,8 +476,8 @@ def sweep(args):
         log_every = args.at_step if args.at_step else max(steps, 1)
         log = os.path.join(args.work, f"{stem}-{args.knob.replace(':', '_').replace(' ', '')}"
                                       f"-{text}.log.csv")
-        run_args = [*fixed, *knob.driver_args(text), "--steps", str(steps),
-                    "--log-file-every", str(log_every)]
+        run_args = [*set_args(args.set, text), *seed, *knob.driver_args(text),
+                    "--steps", str(steps), "--log-file-every", str(log_every)]
         times = [run_once(program, run_args, log, threads) for _ in range(args.repeats)]
         row = read_row(log, args.at_step)
         results.append(dict(knob=float(text), text=text, row=row, steps=steps,
