@@ -102,12 +102,7 @@ void ModelEmitter::matrix_free_solve_body(const Kernel& k, const ExpressionNames
   std::size_t next = 0;
   std::string open_guard;  // consecutive terms under the same conditions share one if
   for (const OperatorTerm& t : op.terms) {
-    const std::string guard = operator_guard(t, names);
-    if (guard != open_guard) {
-      if (!open_guard.empty()) line("}");
-      if (!guard.empty()) linef("if ({}) {{", guard);
-      open_guard = guard;
-    }
+    enter_guard(operator_guard(t, names), open_guard);
     const std::string scale = t.scale ? emit_operand(t.scale, BinaryOp::Mul, m_, names) : "";
     const std::string value =
         t.sum ? fast[next++].sum + "[" + i + "]" : x + "[static_cast<Eigen::Index>(" + i + ")]";

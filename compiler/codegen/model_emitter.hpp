@@ -273,6 +273,9 @@ class ModelEmitter {
                   const std::string& count);
   // The conditions on i under which an operator term applies ("" for always).
   std::string operator_guard(const OperatorTerm& t, const ExpressionNames& names) const;
+  // Consecutive terms under the same conditions share one if: closes the
+  // open one and opens one for `guard` when they differ.
+  void enter_guard(const std::string& guard, std::string& open);
   // Emits the locals a sum term's coefficient reads (dx, dx_norm) for row i
   // and column j, and returns the coefficient times the term's scale.
   std::string operator_entry(const OperatorTerm& t, const Statement& st,

@@ -40,12 +40,7 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
   // Consecutive terms under the same conditions share one if.
   std::string open_guard;
   for (const OperatorTerm& t : op.terms) {
-    const std::string guard = operator_guard(t, names);
-    if (guard != open_guard) {
-      if (!open_guard.empty()) line("}");
-      if (!guard.empty()) linef("if ({}) {{", guard);
-      open_guard = guard;
-    }
+    enter_guard(operator_guard(t, names), open_guard);
     if (!t.sum) {
       line(add(i, t.scale ? emit_operand(t.scale, BinaryOp::Mul, m_, names) : "1.0"));
     } else {
@@ -112,6 +107,14 @@ void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, Nam
       "}});",
       count, i, target, i, result, i);
   linef("{}.x = Eigen::VectorXd();  // the values live in {} now", result, unknown);
+}
+
+// Closes the if of `open` and opens one for `guard` when they differ.
+void ModelEmitter::enter_guard(const std::string& guard, std::string& open) {
+  if (guard == open) return;
+  if (!open.empty()) line("}");
+  if (!guard.empty()) linef("if ({}) {{", guard);
+  open = guard;
 }
 
 std::string ModelEmitter::operator_guard(const OperatorTerm& t,
