@@ -474,10 +474,13 @@ def sweep(args):
             program = programs[flags]
         steps = steps_for(args.steps, text)
         log_every = args.at_step if args.at_step else max(steps, 1)
-        log = os.path.join(args.work, f"{stem}-{args.knob.replace(':', '_').replace(' ', '')}"
-                                      f"-{text}.log.csv")
         run_args = [*set_args(args.set, text), *seed, *knob.driver_args(text),
                     "--steps", str(steps), "--log-file-every", str(log_every)]
+        # Named after the program and its arguments too: two sweeps of one
+        # model (other --set values, say) may run at once in one --work.
+        run_tag = hashlib.sha1(" ".join([program, *run_args]).encode()).hexdigest()[:8]
+        log = os.path.join(args.work, f"{stem}-{args.knob.replace(':', '_').replace(' ', '')}"
+                                      f"-{text}-{run_tag}.log.csv")
         times = [run_once(program, run_args, log, threads) for _ in range(args.repeats)]
         row = read_row(log, args.at_step)
         results.append(dict(knob=float(text), text=text, row=row, steps=steps,

@@ -29,6 +29,25 @@ ScheduleItem* scheduled(Program& program, const ScheduleItem& item) {
   return nullptr;
 }
 
+bool solve_named(const std::vector<BlockStatement>& body, const std::string& name) {
+  for (const BlockStatement& s : body) {
+    if (const auto* solve = boost::get<SolveStatement>(&s))
+      if (solve->name && solve->name->name == name) return true;
+    if (const auto* loop = boost::get<x3::forward_ast<IterateBlock>>(&s))
+      if (solve_named(loop->get().body, name)) return true;
+  }
+  return false;
+}
+
+// Whether the item's subject is a solve statement of the model.
+bool names_a_solve(const Program& program, const ScheduleItem& item) {
+  if (!item.subject || item.subject->member) return false;
+  for (const Declaration& d : program.declarations)
+    if (const auto* stage = boost::get<StageBlock>(&d))
+      if (solve_named(stage->body, item.subject->name.name)) return true;
+  return false;
+}
+
 }  // namespace
 
 void apply_schedule_overrides(Program& program, SourceFile& file,
@@ -52,8 +71,11 @@ void apply_schedule_overrides(Program& program, SourceFile& file,
           continue;
         }
         for (ScheduleOption& option : item.options) {
-          // A fast sum takes a tolerance or an order: asking one drops the other.
-          const std::string rival = option.key.name == "tol"     ? "order"
+          // A fast sum takes a tolerance or an order: asking one drops the
+          // other. A solve takes both: the solver's tol and its fast sums' order.
+          const bool solve = names_a_solve(program, item);
+          const std::string rival = solve                        ? ""
+                                    : option.key.name == "tol"   ? "order"
                                     : option.key.name == "order" ? "tol"
                                                                  : "";
           own->options.erase(

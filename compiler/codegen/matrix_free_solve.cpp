@@ -7,7 +7,10 @@
 // evaluated pair by pair. The runtime's solve_matrix_free runs GMRES
 // (runtime/partc/solve/matrix_free_solve.hpp). The fast sums' tolerance is a
 // hundredth of the solver's: a residual below the product's own error means
-// nothing, and a looser product stalls the solver.
+// nothing, and a looser product stalls the solver. With --check-accuracy the
+// contract is the user's tolerance on the residual against the direct sums
+// (runtime/partc/solve/direct_residual.hpp); the products' own errors are
+// reported beside it.
 #include <fmt/format.h>
 
 #include "codegen/model_emitter.hpp"
@@ -62,11 +65,10 @@ void ModelEmitter::matrix_free_solve_body(const Kernel& k, const ExpressionNames
     const std::string value = expression(fact.kernel, of_r);
     linef("const auto {} = [&](double r) {{ return {}; }};", f.kernel,
           fact.skips_coincident ? fmt::format("r > 0 ? {} : 0.0", value) : value);
-    const std::string order =
-        !fact.order ? "0"
-        : ir::as<ir::Literal>(fact.order)
-            ? expression(fact.order, names)
-            : "static_cast<int>(" + expression(fact.order, names) + ")";
+    const std::string order = !fact.order ? "0"
+                              : ir::as<ir::Literal>(fact.order)
+                                  ? expression(fact.order, names)
+                                  : "static_cast<int>(" + expression(fact.order, names) + ")";
     linef("const partc::fast_sum::Accuracy {}{{{}, {}, false}};  // tol, order, field", f.accuracy,
           fact.order ? "0.0" : tol + " / 100", order);
     linef("const partc::fast_sum::Fmm {}({}.positions(), {}.positions(), {}, {});", f.fmm, set, set,
@@ -75,8 +77,7 @@ void ModelEmitter::matrix_free_solve_body(const Kernel& k, const ExpressionNames
   }
 
   // The product, one fast sum per term, then each row's combination.
-  const std::string product = locals.fresh("product"), x = locals.fresh("x"),
-                    y = locals.fresh("y");
+  const std::string product = locals.fresh("product"), x = locals.fresh("x"), y = locals.fresh("y");
   const std::string charges = locals.fresh("charges");
   line("// A x: the fast sums, then each row from the terms that apply to it.");
   linef("const auto {} = [&](const Eigen::VectorXd& {}, Eigen::VectorXd& {}) {{", product, x, y);
@@ -161,8 +162,17 @@ void ModelEmitter::matrix_free_solve_body(const Kernel& k, const ExpressionNames
       "matrix-free (dense = fmm), so no {1}.mtx was written, only its right side\");",
       result, unknown);
   line("}");
-  // The check runs each fast sum once more, on the answer's charges.
+  // The check: the answer's residual against the direct sums (the solve's
+  // contract), then each fast sum once more on the answer's charges (reported).
   line("if (check_accuracy_) {");
+  linef("Eigen::VectorXd fast_ax({});", count);
+  linef("{}({}.x, fast_ax);", product, result);
+  std::string orders;  // the highest order of the products
+  for (const FastTerm& f : fast)
+    orders = orders.empty() ? f.fmm + ".order()"
+                            : fmt::format("std::max({}, {}.order())", orders, f.fmm);
+  linef("partc::check_direct_residual({}, {}, fast_ax, {}, {}, {});", result, entry, rhs, tol,
+        orders);
   for (const FastTerm& f : fast) {
     line("{");
     linef("std::vector<double> {}({}), {}({});", charges, count, f.sum, count);

@@ -278,7 +278,8 @@ void ModelEmitter::header() {
   if (std::any_of(solve_results_.begin(), solve_results_.end(), [](const auto& solve) {
         return solve.first->schedule.dense == DenseMethod::Fmm;
       }))
-    headers.push_back("solve/matrix_free_solve.hpp");
+    for (const char* h : {"solve/direct_residual.hpp", "solve/matrix_free_solve.hpp"})
+      headers.push_back(h);
   std::sort(headers.begin(), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
   line("");
@@ -920,8 +921,12 @@ void ModelEmitter::state() {
   if (!fast_sum_records_.empty()) {
     std::vector<std::string> records(fast_sum_records_.size());
     for (const auto& [id, index] : fast_sum_records_)
-      records[index] = fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"}}",
-                                   options_.source_name, facts_.fast_sums.at(id).line);
+      records[index] = fmt::format(
+          "partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"{}}}", options_.source_name,
+          facts_.fast_sums.at(id).line,
+          facts_.fast_sums.at(id).in_solve
+              ? ", partc::fast_sum::FastSumRecord::Role::solve_products"
+              : "");
     linef("std::vector<partc::fast_sum::FastSumRecord> fast_sums_{{{}}};", fmt::join(records, ", "));
     line("bool check_accuracy_ = false;  // --check-accuracy");
   }

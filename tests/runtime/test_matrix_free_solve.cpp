@@ -1,8 +1,9 @@
 // The matrix-free solve (GMRES + restricted Schwarz) against a dense LU of
 // the same matrix, assembled here entry by entry: RBF interpolation with the
 // product done densely and by the fast sum, Kansa-like mixed rows, the
-// preconditioner on its own, a system it cannot solve reported as such, and
-// the answer bitwise the same on 1 and 2 threads.
+// preconditioner on its own, a system it cannot solve reported as such, the
+// answer bitwise the same on 1 and 2 threads, and the check of its residual
+// against the direct sums (direct_residual.hpp).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "fast_sum_cases.hpp"
 #include "partc/fast_sum/fmm.hpp"
 #include "partc/parallel.hpp"
+#include "partc/solve/direct_residual.hpp"
 #include "partc/solve/matrix_free_solve.hpp"
 
 namespace {
@@ -19,7 +21,8 @@ using partc::Vec;
 // n x n nodes on the unit square: the layout of examples/rbf_franke.part.
 std::vector<Vec<2>> square_nodes(int n) {
   std::vector<Vec<2>> x;
-  for (int k = 0; k < n * n; ++k) x.push_back(Vec<2>{{double(k % n) / (n - 1), double(k / n) / (n - 1)}});
+  for (int k = 0; k < n * n; ++k)
+    x.push_back(Vec<2>{{double(k % n) / (n - 1), double(k / n) / (n - 1)}});
   return x;
 }
 
@@ -99,14 +102,58 @@ TEST_CASE("matrix-free RBF interpolation agrees with a dense LU", "[solve][matri
     const partc::SolveResult result = partc::solve_matrix_free(x, apply, entry, f, options);
     INFO(result.summary());
     CHECK(result.converged);
-    // Against the exact matrix: the fast sum's error, not the solver's, bounds it.
-    CHECK((a * result.x - f).norm() <= 1e-9 * f.norm());
+    // Against the exact matrix too: the products' error fits the tenth of
+    // the tolerance the solver leaves it.
+    CHECK((a * result.x - f).norm() <= 1e-10 * f.norm());
     const Eigen::VectorXd s = a * result.x, s_lu = a * exact;
     CHECK((s - s_lu).norm() <= 1e-9 * f.norm());
+    // The contract's check, on every row (900 samples), against the assembled A.
+    Eigen::VectorXd fast_ax(f.size());
+    apply(result.x, fast_ax);
+    const double all_rows = (fast_ax - a * result.x).norm() / f.norm();
+    const double sampled = partc::sampled_product_error(entry, result.x, fast_ax, f, 900);
+    INFO("sampled " << sampled << ", all rows " << all_rows);
+    // To rounding: the error is 1e-12 of ||f||, and Eigen's blocked product
+    // and the check's row loop round the direct sums differently.
+    CHECK(sampled == Approx(all_rows).epsilon(1e-3));
+    partc::SolveResult checked = result;
+    CHECK_NOTHROW(partc::check_direct_residual(checked, entry, fast_ax, f, 1e-10, fmm.order()));
+    CHECK(checked.product_error);
+    CHECK(*checked.product_error + checked.residual <= 1e-10);
   }
 }
 
-TEST_CASE("matrix-free Kansa-like rows: a different kernel on the boundary", "[solve][matrix_free]") {
+TEST_CASE("the direct-residual check stops an answer the fast products spoil",
+          "[solve][matrix_free]") {
+  // A residual of zero against the "fast" operator, whose products are off by
+  // a known amount: the check measures that amount and compares it with tol.
+  const std::vector<Vec<2>> x = square_nodes(10);
+  const auto entry = [&](std::size_t i, std::size_t j) {
+    return std::exp(-partc::squared_norm(x[j] - x[i])) + (i == j ? 1.0 : 0.0);
+  };
+  const Eigen::MatrixXd a = assemble(x.size(), entry);
+  const Eigen::VectorXd f = franke_values(x);
+  partc::SolveResult result;
+  result.name = "w";
+  result.x = a.partialPivLu().solve(f);
+  result.residual = 0;
+  SECTION("an error below tol passes, and is measured") {
+    const Eigen::VectorXd fast_ax = f + 3e-9 * f;
+    partc::check_direct_residual(result, entry, fast_ax, f, 1e-8, 7);
+    CHECK(*result.product_error == Approx(3e-9).epsilon(1e-5));
+    CHECK_THAT(result.summary(), Catch::Contains("(+ 3.0e-09 fast products' error, sampled)"));
+  }
+  SECTION("an error above tol says what was asked, what was measured and what to do") {
+    const Eigen::VectorXd fast_ax = f + 2e-8 * f;
+    CHECK_THROWS_WITH(partc::check_direct_residual(result, entry, fast_ax, f, 1e-8, 7),
+                      Catch::Contains("solve w: asked tol 1.0e-08") &&
+                          Catch::Contains("measured up to 2.0e-08") &&
+                          Catch::Contains("schedule: order = 9"));
+  }
+}
+
+TEST_CASE("matrix-free Kansa-like rows: a different kernel on the boundary",
+          "[solve][matrix_free]") {
   // Boundary rows interpolate with a Gaussian, interior rows take its
   // negative Laplacian: a nonsymmetric matrix, as kansa_poisson.part's.
   const int n = 24;
@@ -165,14 +212,17 @@ TEST_CASE("the matrix-free solve is bitwise the same on 1 and 2 threads", "[solv
     const double r = partc::norm(x[j] - x[i]);
     return std::sqrt(1 + eps * eps * r * r);
   };
-  const partc::fast_sum::Fmm fmm(x, x, [&](double r) { return std::sqrt(1 + eps * eps * r * r); },
-                                 partc::fast_sum::Accuracy{1e-12});
+  const partc::fast_sum::Fmm fmm(
+      x, x, [&](double r) { return std::sqrt(1 + eps * eps * r * r); },
+      partc::fast_sum::Accuracy{1e-12});
   const auto apply = [&](const Eigen::VectorXd& w, Eigen::VectorXd& y) {
     fmm.potential(w.data(), y.data());
   };
   partc::MatrixFreeSolveOptions options;
   options.schwarz.cluster_size = 32;
-  const auto run = [&] { return partc::solve_matrix_free(x, apply, entry, franke_values(x), options).x; };
+  const auto run = [&] {
+    return partc::solve_matrix_free(x, apply, entry, franke_values(x), options).x;
+  };
   const Eigen::VectorXd one = partc::with_threads(1, run);
   const Eigen::VectorXd two = partc::with_threads(2, run);
   CHECK(one == two);

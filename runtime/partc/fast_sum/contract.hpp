@@ -17,7 +17,9 @@
 // asked is never returned silently. A tolerance no order is predicted to
 // meet stops the run at the first evaluation, checked or not. An order fixed
 // by the schedule asks no tolerance, so its check reports and never stops
-// the run.
+// the run; nor does the check of a matrix-free solve's products, whose
+// tolerance partc chose, not the user: the solve's residual against the
+// direct sums is that contract (solve/direct_residual.hpp).
 #pragma once
 
 #include <algorithm>
@@ -37,7 +39,9 @@ namespace partc::fast_sum {
 
 class FastSumRecord {
  public:
-  explicit FastSumRecord(std::string where) : where_(std::move(where)) {}
+  enum class Role { sum, solve_products };
+  explicit FastSumRecord(std::string where, Role role = Role::sum)
+      : where_(std::move(where)), role_(role) {}
 
   // After an evaluation planned at `started` (plan and evaluation timed
   // together). Throws NumericalError when even the highest order the plan
@@ -72,7 +76,8 @@ class FastSumRecord {
     worst_l2_ = std::max(worst_l2_, measured.rel_l2);
     worst_max_ = std::max(worst_max_, measured.max_rel);
     sampled_ = measured.targets;
-    if (asked_.order > 0 || !(measured.rel_l2 > asked_.tol)) return;
+    if (role_ == Role::solve_products || asked_.order > 0 || !(measured.rel_l2 > asked_.tol))
+      return;
     const int order = order_to_meet(fmm, asked_.tol, measured.rel_l2);
     throw NumericalError(
         where_ + ": asked tol " + number(asked_.tol) + ", measured " + number(measured.rel_l2) +
@@ -89,6 +94,7 @@ class FastSumRecord {
   std::string summary() const {
     std::string text = where_ + ": fmm order " + std::to_string(order_) +
                        (asked_.order > 0 ? " (schedule)" : " for tol " + number(asked_.tol)) +
+                       (role_ == Role::solve_products ? " (a solve's products)" : "") +
                        ", predicted " + number(predicted_) + " relative L2";
     if (worst_l2_ >= 0)
       text += ", measured " + number(worst_l2_) + " (max " + number(worst_max_) + ", " +
@@ -104,6 +110,7 @@ class FastSumRecord {
     return text;
   }
   std::string where_;
+  Role role_;
   Accuracy asked_;
   int order_ = 0;
   double predicted_ = 0;

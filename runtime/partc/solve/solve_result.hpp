@@ -11,6 +11,9 @@
 // - residual is recomputed from x as ||A x - b|| / ||b|| (2-norms), never an
 //   iterative method's own figure, which may be preconditioned or drift from
 //   the truth. With b = 0 it is ||A x||, absolute (0 for the exact x = 0).
+//   Matrix-free, A is the fast products' operator; with the accuracy check,
+//   product_error bounds how far that is from the direct sums'
+//   (direct_residual.hpp).
 // - What does not apply to a method is an empty std::optional: rcond (dense),
 //   rank (dense fallback), nonzeros and iterations (sparse).
 // - converged is false only for an iterative method that missed its tolerance
@@ -62,7 +65,8 @@ struct SolveResult {
   std::optional<Eigen::Index> rank;  // numerical rank
   std::optional<Eigen::Index> iterations;
   double residual = 0.0;
-  double seconds = 0.0;  // wall time of the whole solve, checks included
+  std::optional<double> product_error;  // matrix-free, checked: fast products' error on x, of ||b||
+  double seconds = 0.0;                 // wall time of the whole solve, checks included
   bool converged = true;
   std::string warning;  // for the user, starting "solve <name>: "; empty when all went well
 
@@ -78,7 +82,10 @@ struct SolveResult {
               " iterations";
     else if (!converged)
       line += ", NOT CONVERGED";
-    line += ", residual " + detail::scientific(residual) + ", " + detail::format_seconds(seconds);
+    line += ", residual " + detail::scientific(residual);
+    if (product_error)
+      line += " (+ " + detail::scientific(*product_error) + " fast products' error, sampled)";
+    line += ", " + detail::format_seconds(seconds);
     return line;
   }
 };
