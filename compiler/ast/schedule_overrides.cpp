@@ -70,10 +70,10 @@ void apply_schedule_overrides(Program& program, SourceFile& file,
           program.declarations.emplace_back(std::move(added));
           continue;
         }
+        // A fast sum takes a tolerance or an order: asking one drops the
+        // other. A solve takes both: the solver's tol and its fast sums' order.
+        const bool solve = names_a_solve(program, item);
         for (ScheduleOption& option : item.options) {
-          // A fast sum takes a tolerance or an order: asking one drops the
-          // other. A solve takes both: the solver's tol and its fast sums' order.
-          const bool solve = names_a_solve(program, item);
           const std::string rival = solve                        ? ""
                                     : option.key.name == "tol"   ? "order"
                                     : option.key.name == "order" ? "tol"

@@ -18,20 +18,21 @@
 // (solve_matrix_free keeps a tenth of tol for it).
 //
 // Surprises:
-// - The sample is every (n / samples)-th row, deterministic; each row costs
+// - The sample is every (n / samples)-th row, deterministic, as the fast
+//   sums' own check samples targets (fast_sum/accuracy.hpp); each row costs
 //   n entries, so the check costs about samples / n of a dense product.
 // - A miss throws NumericalError naming the solve, what was asked, the two
 //   parts measured and a fixed order that makes the products tighter.
 #pragma once
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "partc/errors.hpp"
+#include "partc/fast_sum/accuracy.hpp"
 #include "partc/parallel.hpp"
 #include "partc/solve/solve_result.hpp"
 
@@ -42,9 +43,7 @@ template <class Entry>
 double sampled_product_error(Entry entry, const Eigen::VectorXd& x, const Eigen::VectorXd& fast_ax,
                              const Eigen::VectorXd& b, std::size_t samples = 500) {
   const auto n = static_cast<std::size_t>(x.size());
-  const std::size_t stride = std::max<std::size_t>(1, n / std::max<std::size_t>(1, samples));
-  std::vector<std::size_t> rows;
-  for (std::size_t i = 0; i < n && rows.size() < samples; i += stride) rows.push_back(i);
+  const std::vector<std::size_t> rows = fast_sum::detail::sample_targets(n, samples);
   std::vector<double> difference(rows.size());
   parallel_for(rows.size(), LoopWork::blocks, [&](std::size_t s) {
     const std::size_t i = rows[s];
