@@ -84,6 +84,8 @@ class CellGrid {
 
   // True when every periodic dimension has >= 3 cells: no pair needs minimum_image.
   bool shifts_suffice() const { return !exact_; }
+  // The squared distance within which scan reports a candidate.
+  double squared_reach() const { return squared_reach_; }
 
   // The (linear) cell of p; p must already be wrapped into the periodic box.
   std::size_t cell_of(const Vec<D>& p) const {

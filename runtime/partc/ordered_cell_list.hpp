@@ -98,21 +98,65 @@ class OrderedCellList {
   // serially, i ascending.
   template <class F>
   void for_each_pair(F&& f) const {
+    for_each_pair_span([&](std::size_t, std::size_t i, std::size_t from, std::size_t until,
+                           bool self) {
+      f(i, [&](auto&& g) {
+        if (self) g(i, Vec<D>::zero());
+        for_each_near_between(i, from, until, g);
+      });
+    });
+  }
+
+  // The schedule of for_each_pair, for walks of their own (simd/pair_batches.hpp):
+  // f(slab, i, from, until, self) says that i's pairs are its near points j
+  // with from <= j < until, and (self) the pair (i, i); calls of one slab run
+  // on one thread. A point of slab 0 is called twice, the second time (self
+  // false, slab the last) for its pairs across the periodic edge.
+  template <class F>
+  void for_each_pair_span(F&& f) const {
     const std::size_t n = points_.size(), last = pair_slabs_.count() - 1;
     // Slab 0's pairs from here on cross the periodic edge: they run with the last slab.
     const std::size_t edge = last > 0 ? pair_slabs_.start(last) : n;
     pair_slabs_.for_each_slab([&](std::size_t a) {
       for (std::size_t i = pair_slabs_.start(a); i < pair_slabs_.start(a + 1); ++i)
-        if (is_finite(points_[i]))
-          f(i, [&](auto&& g) {
-            g(i, Vec<D>::zero());
-            for_each_near_between(i, i + 1, a == 0 ? edge : n, g);
-          });
+        if (is_finite(points_[i])) f(a, i, i + 1, a == 0 ? edge : n, true);
       if (a == last && a > 0)
         for (std::size_t i = pair_slabs_.start(0); i < pair_slabs_.start(1); ++i)
-          f(i, [&](auto&& g) { for_each_near_between(i, edge, n, g); });
+          f(a, i, edge, n, false);
     });
   }
+
+  // The runs of candidates of point k's member query, for from <= j < until:
+  // run(first, stop, qs) for points first .. stop-1, seen from the query image
+  // qs (dx = point(j) - qs); for_each_near_between scans the same runs. False,
+  // and no call, in exact mode (!shifts_suffice()), which has no runs.
+  template <class Run>
+  bool for_each_run_between(std::size_t k, std::size_t from, std::size_t until, Run&& run) const {
+    if (!grid_.shifts_suffice()) return false;
+    const std::size_t cell = cell_of_sorted_[k];
+    for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r) {
+      const std::size_t first = std::max(runs_[r].first, from);
+      const std::size_t stop = std::min(runs_[r].stop, until);
+      if (first < stop) run(first, stop, points_[k] + runs_[r].shift);
+    }
+    return true;
+  }
+
+  // The member query of point k, for the points from <= j < until only.
+  template <class F>
+  void for_each_near_between(std::size_t k, std::size_t from, std::size_t until, F&& f) const {
+    const bool by_runs = for_each_run_between(k, from, until, [&](std::size_t first,
+                                                                  std::size_t stop,
+                                                                  const Vec<D>& qs) {
+      grid_.scan(std::false_type{}, first, stop, [](std::size_t j) { return j + 1; }, points_, qs,
+                 f);
+    });
+    if (!by_runs)
+      for_each_near(points_[k], [&](std::size_t j, const Vec<D>& dx) {
+        if (j >= from && j < until) f(j, dx);
+      });
+  }
+  double squared_reach() const { return grid_.squared_reach(); }
   const SlabSchedule& pair_slabs() const { return pair_slabs_; }
 
   // Where each plane of cells along the first dimension begins, and its end:
@@ -154,25 +198,6 @@ class OrderedCellList {
   const Vec<D>& point(std::size_t k) const { return points_[k]; }
 
  private:
-  // The member query of point k, for the points from <= j < until only.
-  template <class F>
-  void for_each_near_between(std::size_t k, std::size_t from, std::size_t until, F&& f) const {
-    if (!grid_.shifts_suffice()) {
-      for_each_near(points_[k], [&](std::size_t j, const Vec<D>& dx) {
-        if (j >= from && j < until) f(j, dx);
-      });
-      return;
-    }
-    const std::size_t cell = cell_of_sorted_[k];
-    for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r) {
-      const std::size_t first = std::max(runs_[r].first, from);
-      const std::size_t stop = std::min(runs_[r].stop, until);
-      if (first < stop)
-        grid_.scan(std::false_type{}, first, stop, [](std::size_t j) { return j + 1; }, points_,
-                   points_[k] + runs_[r].shift, f);
-    }
-  }
-
   // Points first .. stop-1, seen from a query q as neighbours of q + shift.
   struct Run {
     std::size_t first, stop;

@@ -1,0 +1,166 @@
+// The packed pair walk (simd/pair_batches.hpp) against the scalar one it
+// packs (OrderedCellList::for_each_pair, itself tested against brute force in
+// test_search.cpp): the same calls, in the same order, with the same pairs
+// and the same dx bit for bit; padding as documented; the compress of every
+// mask against the obvious loop. Built twice, with the default flags and with
+// -march=native, so that both the narrowest and the widest vectors of the
+// machine are covered (the test prints the lane count).
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "partc/domain.hpp"
+#include "partc/ordered_cell_list.hpp"
+#include "partc/parallel.hpp"
+#include "partc/simd/compress.hpp"
+#include "partc/simd/pair_batches.hpp"
+
+using partc::Domain;
+using partc::Vec;
+namespace simd = partc::simd;
+namespace hn = partc::simd::hn;
+
+namespace {
+
+// One call of a walk: i and its pairs (j, dx).
+template <int D>
+struct Call {
+  std::size_t i;
+  std::vector<std::pair<std::size_t, Vec<D>>> pairs;
+};
+
+template <int D>
+bool same(const Call<D>& a, const Call<D>& b) {
+  if (a.i != b.i || a.pairs.size() != b.pairs.size()) return false;
+  for (std::size_t k = 0; k < a.pairs.size(); ++k) {
+    if (a.pairs[k].first != b.pairs[k].first) return false;
+    // Bit for bit: the representations (NaN and -0 included).
+    if (std::memcmp(&a.pairs[k].second, &b.pairs[k].second, sizeof(Vec<D>)) != 0) return false;
+  }
+  return true;
+}
+
+// Points uniform in the box, or (clustered) in a few tight blobs; every 97th
+// a NaN when asked.
+template <int D>
+std::vector<Vec<D>> points(std::size_t n, bool clustered, bool with_nan, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 0.02);
+  std::vector<Vec<D>> centres(4);
+  for (auto& c : centres)
+    for (int d = 0; d < D; ++d) c[d] = u(rng);
+  std::vector<Vec<D>> p(n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (int d = 0; d < D; ++d)
+      p[k][d] = clustered ? std::fmod(centres[k % 4][d] + g(rng) + 1.0, 1.0) : u(rng);
+  if (with_nan)
+    for (std::size_t k = 0; k < n; k += 97) p[k][0] = std::numeric_limits<double>::quiet_NaN();
+  return p;
+}
+
+// Both walks over one structure; requires identical calls, and checks the padding.
+template <int D>
+void check_walks(const Domain<D>& domain, double radius, const std::vector<Vec<D>>& p) {
+  partc::OrderedCellList<D> cells;
+  cells.build(domain, radius, p);
+  // By i: calls for one i never run at once (slab_schedule.hpp), for one or more threads.
+  std::vector<std::vector<Call<D>>> scalar(p.size()), packed(p.size());
+  cells.for_each_pair([&](std::size_t i, const auto& pairs_of_i) {
+    Call<D> call{i, {}};
+    pairs_of_i([&](std::size_t j, const Vec<D>& dx) { call.pairs.push_back({j, dx}); });
+    scalar[i].push_back(call);
+  });
+  simd::PairBatches<D> batches;
+  batches.build(cells, p.size());
+  std::vector<char> padding_ok(p.size(), 1);
+  batches.for_each_pair(cells, [&](std::size_t i, simd::PairBatch<D>& b) {
+    Call<D> call{i, {}};
+    for (std::size_t k = 0; k < b.count(); ++k) {
+      Vec<D> dx;
+      for (int d = 0; d < D; ++d) dx[d] = b.dx(d)[k];
+      call.pairs.push_back({static_cast<std::size_t>(b.j()[k]), dx});
+    }
+    for (std::size_t k = b.count(); k < b.padded(); ++k) {
+      padding_ok[i] &= b.j()[k] == i && b.r2()[k] == 1.0;
+      for (int d = 0; d < D; ++d) padding_ok[i] &= b.dx(d)[k] == 0.0;
+    }
+    packed[i].push_back(call);
+  });
+  CHECK(std::count(padding_ok.begin(), padding_ok.end(), 0) == 0);
+  std::size_t differing = 0, pairs = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    REQUIRE(packed[i].size() == scalar[i].size());
+    for (std::size_t c = 0; c < scalar[i].size(); ++c) {
+      differing += !same(scalar[i][c], packed[i][c]);
+      pairs += scalar[i][c].pairs.size();
+    }
+  }
+  CHECK(differing == 0);
+  CHECK(pairs > p.size());  // not a vacuous comparison
+}
+
+template <int D>
+Domain<D> unit_box(bool periodic) {
+  Domain<D> domain;
+  for (int d = 0; d < D; ++d) {
+    domain.lo[d] = 0.0;
+    domain.hi[d] = 1.0;
+    domain.periodic[d] = periodic;
+  }
+  return domain;
+}
+
+}  // namespace
+
+TEST_CASE("compress moves the kept lanes to the front, in order", "[simd]") {
+  const simd::Real d;
+  const simd::Index du;
+  const std::size_t lanes = hn::Lanes(d);
+  INFO("lanes of double: " << lanes);
+  std::vector<double> in(lanes), out(lanes);
+  std::vector<std::uint64_t> in_j(lanes), out_j(lanes);
+  for (std::size_t k = 0; k < lanes; ++k) in[k] = 10.0 + static_cast<double>(k), in_j[k] = 100 + k;
+  for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << lanes); ++mask) {
+    std::vector<double> keep(lanes);
+    std::vector<double> expected;
+    for (std::size_t k = 0; k < lanes; ++k) {
+      keep[k] = (mask >> k & 1) ? 1.0 : 0.0;
+      if (mask >> k & 1) expected.push_back(in[k]);
+    }
+    const simd::Compressor compress(hn::Gt(hn::LoadU(d, keep.data()), hn::Zero(d)));
+    REQUIRE(compress.count() == expected.size());
+    hn::StoreU(compress(hn::LoadU(d, in.data())), d, out.data());
+    hn::StoreU(compress(hn::LoadU(du, in_j.data())), du, out_j.data());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      CHECK(out[k] == expected[k]);
+      CHECK(static_cast<double>(out_j[k]) == expected[k] + 90.0);
+    }
+  }
+}
+
+TEST_CASE("the packed walk gives the scalar walk's pairs, bit for bit", "[simd]") {
+  INFO("lanes of double: " << simd::lanes());
+  for (const bool periodic : {true, false})
+    for (const bool clustered : {false, true}) {
+      INFO("periodic " << periodic << ", clustered " << clustered);
+      check_walks<2>(unit_box<2>(periodic), 0.05, points<2>(3000, clustered, false, 1));
+      check_walks<3>(unit_box<3>(periodic), 0.1, points<3>(3000, clustered, false, 2));
+      check_walks<1>(unit_box<1>(periodic), 0.002, points<1>(2000, clustered, false, 3));
+    }
+  SECTION("NaN points have no pairs") {
+    check_walks<2>(unit_box<2>(true), 0.05, points<2>(3000, false, true, 4));
+  }
+  SECTION("exact mode: a periodic dimension with fewer than 3 cells") {
+    check_walks<2>(unit_box<2>(true), 0.4, points<2>(500, false, false, 5));
+  }
+  SECTION("one and two threads") {
+    partc::with_threads(
+        2, [] { check_walks<2>(unit_box<2>(true), 0.02, points<2>(20000, false, false, 6)); });
+  }
+}
