@@ -98,22 +98,24 @@ class OrderedCellList {
   // serially, i ascending.
   template <class F>
   void for_each_pair(F&& f) const {
-    for_each_pair_span([&](std::size_t, std::size_t i, std::size_t from, std::size_t until,
-                           bool self) {
-      f(i, [&](auto&& g) {
-        if (self) g(i, Vec<D>::zero());
-        for_each_near_between(i, from, until, g);
-      });
-    });
+    for_each_pair_span(
+        [&](std::size_t, std::size_t i, std::size_t from, std::size_t until, bool self) {
+          f(i, [&](auto&& g) {
+            if (self) g(i, Vec<D>::zero());
+            for_each_near_between(i, from, until, g);
+          });
+        },
+        [](std::size_t) {});
   }
 
   // The schedule of for_each_pair, for walks of their own (simd/pair_batches.hpp):
   // f(slab, i, from, until, self) says that i's pairs are its near points j
   // with from <= j < until, and (self) the pair (i, i); calls of one slab run
-  // on one thread. A point of slab 0 is called twice, the second time (self
-  // false, slab the last) for its pairs across the periodic edge.
-  template <class F>
-  void for_each_pair_span(F&& f) const {
+  // on one thread, then slab_done(slab) on it. A point of slab 0 is called
+  // twice, the second time (self false, slab the last) for its pairs across
+  // the periodic edge.
+  template <class F, class SlabDone>
+  void for_each_pair_span(F&& f, SlabDone&& slab_done) const {
     const std::size_t n = points_.size(), last = pair_slabs_.count() - 1;
     // Slab 0's pairs from here on cross the periodic edge: they run with the last slab.
     const std::size_t edge = last > 0 ? pair_slabs_.start(last) : n;
@@ -123,6 +125,7 @@ class OrderedCellList {
       if (a == last && a > 0)
         for (std::size_t i = pair_slabs_.start(0); i < pair_slabs_.start(1); ++i)
           f(a, i, edge, n, false);
+      slab_done(a);
     });
   }
 

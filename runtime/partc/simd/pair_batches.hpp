@@ -1,25 +1,31 @@
 // partc/simd/pair_batches.hpp: the pair walk of an OrderedCellList, each
-// pair once, with each point's pairs packed into a PairBatch for vector
-// arithmetic: the term of a sum is then computed on full vectors of pairs
-// instead of one pair at a time.
+// pair once, with the pairs packed into PairBatches for vector arithmetic: the
+// term of a sum is then computed on full vectors of pairs instead of one pair
+// at a time.
 //
 // Why packed: about 1/3 of a cell list's candidates in 2D (1/6 in 3D) are
 // within reach, unpredictably, so filtering and computing in one loop wastes
 // most lanes or branches; filtering first (a compress-store of the hits) and
 // computing on the packed buffer keeps every lane busy. The hand-written AVX2
 // kernel of tests/bench/floor (compact_simd) does the same per particle with a
-// permutation table, as Compressor (compress.hpp) does.
+// permutation table, as Compressor (compress.hpp) does. Why several points a
+// batch: taking each pair once leaves a point about 5 pairs in 2D, under one
+// vector of 8 doubles; a batch of consecutive points fills its vectors, and
+// both ends of a pair then take their terms in the scatter after the vector
+// loop (i's += and j's -=), which also keeps that loop free of stores to
+// particles.
 //
-// Contract: for_each_pair(cells, f) calls f(i, batch) in the order and
-// threads of cells.for_each_pair (slab_schedule.hpp); the batch holds the
-// same pairs that for_each_pair gives i, in the same order, with the same dx
-// bit for bit: (i, i) first (dx 0) where that walk gives it, then each j > i
-// within the cell list's reach. Results are as independent of the thread
-// count as for_each_pair's.
+// Contract: for_each_pair(cells, with_self, f) calls f(batch) for batches of
+// the pairs that cells.for_each_pair gives, in its order, threads and slabs
+// (slab_schedule.hpp): each point's pairs are consecutive entries (i, j, dx,
+// r2) of one batch, in that walk's order and with its dx bit for bit, the
+// pair (i, i) (dx 0) first when with_self, else left out. A batch never
+// spans two slabs, so results are as independent of the thread count as
+// for_each_pair's.
 //
 // Surprises:
-// - Entries count() .. padded() - 1 are padding (j = i, dx = 0, r2 = 1): a
-//   vector loop may read them, and masks its sums to the first count().
+// - Entries count() .. padded() - 1 are padding (i and j the batch's last i,
+//   dx = 0, r2 = 1): a vector loop may read them, and masks them out.
 // - In exact mode (a periodic dimension with < 3 cells) the cell list has no
 //   runs: the batch is filled from its scalar scan instead.
 // - build copies the cell list's sorted points into per-dimension arrays
@@ -39,15 +45,16 @@
 
 namespace partc::simd {
 
-// One point's pairs, packed, structure of arrays. columns(n) gives the caller
-// n more arrays of the same length (a term's components kept for the
-// scatter to j, say).
+// Pairs of consecutive points, packed, structure of arrays. columns(n) gives
+// the caller n more arrays of the same length (a term's components kept for
+// the scatter, say).
 template <int D>
 class PairBatch {
  public:
   std::size_t count() const { return count_; }
   // count() rounded up to whole vectors.
   std::size_t padded() const { return (count_ + lanes() - 1) / lanes() * lanes(); }
+  const std::uint64_t* i() const { return i_.data(); }
   const std::uint64_t* j() const { return j_.data(); }
   const double* dx(int d) const { return dx_[d].data(); }
   const double* r2() const { return r2_.data(); }
@@ -57,21 +64,21 @@ class PairBatch {
     for (auto& column : columns_) column.resize(j_.size());
   }
 
-  // Empties the batch, with room for `candidates` more entries and padding.
-  void start(std::size_t candidates) {
-    count_ = 0;
-    reserve(candidates);
-  }
+  void clear() { count_ = 0; }
+  // Room for `candidates` more entries, padding and a vector's overrun.
   void reserve(std::size_t candidates) {
     const std::size_t size = count_ + candidates + 2 * lanes();
     if (j_.size() >= size) return;
-    j_.resize(size);
-    for (auto& d : dx_) d.resize(size);
-    r2_.resize(size);
-    for (auto& column : columns_) column.resize(size);
+    const std::size_t grown = std::max(size, 2 * j_.size());
+    i_.resize(grown);
+    j_.resize(grown);
+    for (auto& d : dx_) d.resize(grown);
+    r2_.resize(grown);
+    for (auto& column : columns_) column.resize(grown);
   }
-  void push(std::size_t j, const Vec<D>& dx) {
+  void push(std::size_t i, std::size_t j, const Vec<D>& dx) {
     reserve(1);
+    i_[count_] = i;
     j_[count_] = j;
     double r2 = 0;
     for (int d = 0; d < D; ++d) {
@@ -81,10 +88,11 @@ class PairBatch {
     r2_[count_++] = r2;
   }
 
-  // The candidates first .. stop-1 of coordinate arrays x seen from qs: the
-  // ones with |dx|^2 <= squared_reach appended, by compress-stores.
-  HWY_INLINE void append_near(const std::array<const double*, D>& x, std::size_t first,
-                              std::size_t stop, const Vec<D>& qs, double squared_reach) {
+  // Point i's candidates first .. stop-1 of coordinate arrays x, seen from
+  // qs: the ones with |dx|^2 <= squared_reach appended, by compress-stores.
+  HWY_INLINE void append_near(std::size_t i, const std::array<const double*, D>& x,
+                              std::size_t first, std::size_t stop, const Vec<D>& qs,
+                              double squared_reach) {
     reserve(stop - first);
     const Real d;
     const Index du;
@@ -92,7 +100,19 @@ class PairBatch {
     const auto reach = hn::Set(d, squared_reach);
     std::array<hn::Vec<Real>, D> q;
     for (int k = 0; k < D; ++k) q[k] = hn::Set(d, qs[k]);
-    for (std::size_t j = first; j < stop; j += n) {
+    const auto i_lanes = hn::Set(du, static_cast<std::uint64_t>(i));
+    // Locals, not members: a store through a double* could alias them, and
+    // reloading them after every store costs as much as the filter.
+    std::size_t count = count_;
+    std::uint64_t* i_out = i_.data();
+    std::uint64_t* j_out = j_.data();
+    std::array<double*, D> dx_out;
+    for (int k = 0; k < D; ++k) dx_out[k] = dx_[k].data();
+    double* r2_out = r2_.data();
+    // j's lanes as first + iota + a step: GCC builds Iota(du, j) through the stack.
+    auto j_lanes = hn::Add(hn::Iota(du, 0), hn::Set(du, static_cast<std::uint64_t>(first)));
+    const auto step = hn::Set(du, static_cast<std::uint64_t>(n));
+    for (std::size_t j = first; j < stop; j += n, j_lanes = hn::Add(j_lanes, step)) {
       std::array<hn::Vec<Real>, D> dx;
       for (int k = 0; k < D; ++k) dx[k] = hn::Sub(hn::LoadU(d, x[k] + j), q[k]);
       // Summed in dimension order, as squared_norm does: the same hits as the scalar scan.
@@ -101,25 +121,30 @@ class PairBatch {
       auto hit = hn::Le(r2, reach);
       if (j + n > stop) hit = hn::And(hit, hn::FirstN(d, stop - j));
       const Compressor compress(hit);
-      hn::StoreU(compress(hn::Iota(du, static_cast<std::uint64_t>(j))), du, j_.data() + count_);
-      for (int k = 0; k < D; ++k) hn::StoreU(compress(dx[k]), d, dx_[k].data() + count_);
-      hn::StoreU(compress(r2), d, r2_.data() + count_);
-      count_ += compress.count();
+      hn::StoreU(i_lanes, du, i_out + count);  // every lane i: no compress needed
+      hn::StoreU(compress(j_lanes), du, j_out + count);
+      for (int k = 0; k < D; ++k) hn::StoreU(compress(dx[k]), d, dx_out[k] + count);
+      hn::StoreU(compress(r2), d, r2_out + count);
+      count += compress.count();
     }
+    count_ = count;
   }
 
   // Pads to whole vectors (and one more, for loads that overrun) with
-  // harmless entries: j = i, dx = 0, r2 = 1.
-  void finish(std::size_t i) {
+  // harmless entries: i and j the last entry's i, dx = 0, r2 = 1.
+  void finish() {
     const Real d;
-    hn::StoreU(hn::Set(Index(), i), Index(), j_.data() + count_);
+    const Index du;
+    const auto last = hn::Set(du, count_ > 0 ? i_[count_ - 1] : 0);
+    hn::StoreU(last, du, i_.data() + count_);
+    hn::StoreU(last, du, j_.data() + count_);
     for (auto& dx : dx_) hn::StoreU(hn::Zero(d), d, dx.data() + count_);
     hn::StoreU(hn::Set(d, 1.0), d, r2_.data() + count_);
   }
 
  private:
   std::size_t count_ = 0;
-  std::vector<std::uint64_t> j_;
+  std::vector<std::uint64_t> i_, j_;
   std::array<std::vector<double>, D> dx_;
   std::vector<double> r2_;
   std::vector<std::vector<double>> columns_;
@@ -128,6 +153,10 @@ class PairBatch {
 template <int D>
 class PairBatches {
  public:
+  // A batch is handed over once it holds this many vectors of pairs: enough
+  // to amortise the call, few enough to stay in L1 with its columns.
+  static constexpr std::size_t batch_vectors = 8;
+
   // After every cells.build: the sorted points as coordinate arrays.
   void build(const OrderedCellList<D>& cells, std::size_t n) {
     for (int d = 0; d < D; ++d) {
@@ -137,26 +166,33 @@ class PairBatches {
     batches_.resize(cells.pair_slabs().count());
   }
 
-  // f(i, batch) for i's pairs, as described at the top.
+  // f(batch) for the pairs, as described at the top.
   template <class F>
-  void for_each_pair(const OrderedCellList<D>& cells, F&& f) {
+  void for_each_pair(const OrderedCellList<D>& cells, bool with_self, F&& f) {
     std::array<const double*, D> x;
     for (int d = 0; d < D; ++d) x[d] = x_[d].data();
     const double squared_reach = cells.squared_reach();
+    const std::size_t full = batch_vectors * lanes();
+    const auto hand_over = [&](PairBatch<D>& batch) {
+      batch.finish();
+      f(batch);
+      batch.clear();
+    };
     cells.for_each_pair_span(
         [&](std::size_t slab, std::size_t i, std::size_t from, std::size_t until, bool self) {
           PairBatch<D>& batch = batches_[slab];
-          batch.start(0);
-          if (self) batch.push(i, Vec<D>::zero());
+          if (self && with_self) batch.push(i, i, Vec<D>::zero());
           const bool by_runs = cells.for_each_run_between(
               i, from, until, [&](std::size_t first, std::size_t stop, const Vec<D>& qs) {
-                batch.append_near(x, first, stop, qs, squared_reach);
+                batch.append_near(i, x, first, stop, qs, squared_reach);
               });
           if (!by_runs)
             cells.for_each_near_between(
-                i, from, until, [&](std::size_t j, const Vec<D>& dx) { batch.push(j, dx); });
-          batch.finish(i);
-          f(i, batch);
+                i, from, until, [&](std::size_t j, const Vec<D>& dx) { batch.push(i, j, dx); });
+          if (batch.count() >= full) hand_over(batch);
+        },
+        [&](std::size_t slab) {
+          if (batches_[slab].count() > 0) hand_over(batches_[slab]);
         });
   }
 
