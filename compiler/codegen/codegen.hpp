@@ -12,6 +12,7 @@
 #include "analysis/statement_fusion.hpp"
 #include "analysis/symmetry.hpp"
 #include "analysis/uniform_sums.hpp"
+#include "analysis/vector_terms.hpp"
 #include "ir/ir.hpp"
 #include "support/source.hpp"
 
@@ -34,6 +35,7 @@ struct ModelFacts {
   ObservedStepReport observed_steps;
   StatementFusion fusion;
   FastSumReport fast_sums;
+  VectorTermReport vector_terms;
 };
 
 // Unformatted C++ for the model: a class named after it (md -> Md) with

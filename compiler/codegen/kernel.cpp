@@ -413,7 +413,10 @@ void ModelEmitter::kernel(const Kernel& k) {
       line("// Each pair once when the search walks pairs in parallel, or the set is small.");
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
       linef("if ({}) {{", pairs_once);
-      pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
+      if (vector_terms(l))
+        batch_pass(l, names, count, locals, search, k.name);
+      else
+        pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
       line("}");
       per_particle.push_back(&l);
     } else {

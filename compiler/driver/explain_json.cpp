@@ -144,6 +144,8 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
         if (fact.kind == SearchFact::Kind::Neighbours) {
           a["newton"] = c.facts.symmetry.at(acc->id).newton;
           a["pairs"] = c.facts.symmetry.at(acc->id).reason;
+          if (auto vector = c.facts.vector_terms.find(acc->id); vector != c.facts.vector_terms.end())
+            a["terms"] = {{"vector", vector->second.vector}, {"reason", vector->second.reason}};
         }
         if (auto fast = c.facts.fast_sums.find(acc->id); fast != c.facts.fast_sums.end())
           a["fast_sum"] = fast->second.reason;

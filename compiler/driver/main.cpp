@@ -1,7 +1,7 @@
 // partc: compiles a .part model into a C++ translation unit.
 //
 //   partc model.part -o model.cpp [--main] [--emit=ast|ir|cpp] [--explain]
-//         [--drop NAME] [--stdlib DIR] [--no-fuse] [--schedule ENTRIES]
+//         [--drop NAME] [--stdlib DIR] [--no-fuse] [--no-simd] [--schedule ENTRIES]
 //
 // Exit status: 0 success, 1 the model has errors, 2 bad command line,
 // 3 an I/O failure or a partc bug. Output files are written whole or not at
@@ -28,7 +28,8 @@ namespace {
 
 const char* const kUsage =
     "usage: partc MODEL.part [-o OUTPUT] [--main] [--emit=ast|ir|cpp] [--explain]\n"
-    "             [--drop NAME]... [--stdlib DIR]... [--no-fuse] [--schedule ENTRIES]...\n"
+    "             [--drop NAME]... [--stdlib DIR]... [--no-fuse] [--no-simd]\n"
+    "             [--schedule ENTRIES]...\n"
     "\n"
     "Compiles a particle model into one C++17 translation unit.\n"
     "\n"
@@ -48,6 +49,8 @@ const char* const kUsage =
     "  --no-fuse         every statement a pass of its own: no fusion across statements,\n"
     "                    to measure what it saves (the sums of one statement still share\n"
     "                    a walk)\n"
+    "  --no-simd         every pair term computed pair by pair, none on vectors of pairs,\n"
+    "                    to measure what vectors buy or to compare with them\n"
     "  --schedule ENTRIES  schedule entries over the model's own, as its schedule block\n"
     "                    writes them: --schedule 'force: dense = fmm, tol = 1e-8' replaces\n"
     "                    the options it names of the entry for force (repeatable)\n"
@@ -62,6 +65,7 @@ struct Options {
   bool driver_main = false;
   bool profile = false;
   bool fuse = true;
+  bool simd = true;
   bool explain = false;
   bool explain_json = false;
   std::string emit = "cpp";
@@ -88,6 +92,8 @@ Options parse_options(int argc, char** argv) {
       o.profile = true;
     } else if (arg == "--no-fuse") {
       o.fuse = false;
+    } else if (arg == "--no-simd") {
+      o.simd = false;
     } else if (arg == "--depfile") {
       if (k + 1 >= argc) throw UsageError{"--depfile needs a file name"};
       o.depfile = argv[++k];
@@ -200,7 +206,7 @@ int main(int argc, char** argv) {
     for (const std::string& dir : options.module_folders) scene.roots.push_back({dir, dir});
     scene.roots.push_back({PARTC_STDLIB_DIR, "stdlib"});
     scene.drop = options.drop;
-    const partc::Compilation c = partc::analyse(*file, scene, {options.fuse, options.schedule});
+    const partc::Compilation c = partc::analyse(*file, scene, {options.fuse, options.simd, options.schedule});
     for (const partc::Diagnostic& d : c.warnings) std::cerr << partc::format_diagnostic(*file, d);
     if (options.explain)
       std::cout << (options.explain_json ? partc::explain_json(c, *file) : partc::explain(c, *file));

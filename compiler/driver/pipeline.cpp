@@ -43,6 +43,8 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
   c.facts.symmetry = find_pair_symmetry(c.model);
+  // Which of the sums taken each pair once compute their terms on vectors of pairs.
+  c.facts.vector_terms = find_vector_terms(c.model, c.facts.symmetry, passes.simd);
   // A solve's matrix: dense or sparse as its sums' neighbourhoods say.
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known; so
@@ -214,6 +216,8 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                                       "enough for one thread; else per-particle queries: ")
                              : "both ways: ") +
                pairs.reason + "\n";
+        if (auto vector = c.facts.vector_terms.find(acc->id); vector != c.facts.vector_terms.end())
+          out += "    terms: " + vector->second.reason + "\n";
         if (!st.schedule.skin) {
           const int group = c.facts.searches.group_of.at(acc->id);
           out += fmt::format("    search {} (search plan below)\n",

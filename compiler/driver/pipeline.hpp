@@ -35,6 +35,9 @@ struct PassOptions {
   // false (--no-fuse): every statement a pass of its own, to measure what
   // fusion across statements buys; the sums of one statement still share a walk.
   bool fuse_statements = true;
+  // false (--no-simd): every pair term computed pair by pair, to measure what
+  // the vector form buys or to compare with it.
+  bool simd = true;
   // --schedule TEXT: schedule entries over the model's own (ast/schedule_overrides.hpp).
   std::vector<std::string> schedule;
 };

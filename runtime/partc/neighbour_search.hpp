@@ -44,6 +44,7 @@
 #include "partc/kd_tree.hpp"
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
+#include "partc/simd/pair_batches.hpp"
 #include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
@@ -184,6 +185,42 @@ class NeighbourSearch {
     });
   }
 
+  // for_each_pair's pairs packed for vector arithmetic (simd/pair_batches.hpp):
+  // f(batch) for batches holding each particle's pairs together, the pair
+  // (i, i) (dx 0) only with_self. On the cell-list path the candidates are
+  // filtered by vectors, in the cell list's slabs (in parallel); on the others
+  // the batches are filled from for_each_pair, serially. With Order::keep, i
+  // and j are the set's indices, as for for_each_pair.
+  template <class F>
+  void for_each_pair_batch(bool with_self, F&& f) const {
+    if (kind_ == Kind::cell_list) {
+      if (batched_build_ != build_count_) {  // the coordinates, once per build
+        batches_.build(cell_list_, size_);
+        batched_build_ = build_count_;
+      }
+      if (!sorted_apart()) return batches_.for_each_pair(cell_list_, with_self, f);
+      return batches_.for_each_pair(cell_list_, with_self, [&](simd::PairBatch<D>& batch) {
+        batch.renumber(order_);
+        f(batch);
+      });
+    }
+    simd::PairBatch<D>& batch = serial_batch_;
+    const auto hand_over = [&] {
+      batch.finish();
+      f(batch);
+      batch.clear();
+    };
+    batch.clear();
+    for_each_pair([&](std::size_t i, const auto& pairs) {
+      pairs([&](std::size_t j, const Vec<D>& dx) {
+        // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
+        if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
+      });
+      if (batch.count() >= simd::PairBatches<D>::batch_vectors * simd::lanes()) hand_over();
+    });
+    if (batch.count() > 0) hand_over();
+  }
+
   // Whether such sums should take for_each_pair over per-particle queries:
   // when its pairs run in parallel (cell list), and when the set is small
   // enough for a particle loop to run on one thread anyway (parallel_for below
@@ -308,6 +345,11 @@ class NeighbourSearch {
   BruteForce<D> brute_force_;
   OrderedCellList<D> cell_list_;
   KdTree<D> kd_tree_;
+  // for_each_pair_batch's scratch: coordinates and batches of the cell list
+  // (rebuilt at its first walk after a build), one batch for the serial paths.
+  mutable simd::PairBatches<D> batches_;
+  mutable std::size_t batched_build_ = 0;
+  mutable simd::PairBatch<D> serial_batch_;
 };
 
 }  // namespace partc

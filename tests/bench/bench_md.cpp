@@ -719,7 +719,7 @@ int main(int argc, char** argv) {
               "timing: compact_simd (cell grid, AVX2 filter, packed arithmetic) and sell4 (a\n"
               "precomputed SELL-4 neighbour list: pure pair arithmetic, the floor). They are\n"
               "built with -O3 -march=native -fno-math-errno -fopenmp-simd, the rest with the\n"
-              "Release flags (-O3, no -march=native).\n");
+              "Release flags and the runtime's (-O3 -march=native, CMake's PARTC_NATIVE).\n");
 #else
   std::printf("The floor's hand-vectorised kernels (shared/floor) are not built here: -march=native\n"
               "gives no AVX2 on this compiler or machine, so there is no comparison with them.\n");

@@ -65,6 +65,13 @@ class PairBatch {
   }
 
   void clear() { count_ = 0; }
+  // i and j (padding included) renamed: k becomes name[k].
+  void renumber(const std::vector<std::size_t>& name) {
+    for (std::size_t k = 0; k < count_ + lanes(); ++k) {
+      i_[k] = name[i_[k]];
+      j_[k] = name[j_[k]];
+    }
+  }
   // Room for `candidates` more entries, padding and a vector's overrun.
   void reserve(std::size_t candidates) {
     const std::size_t size = count_ + candidates + 2 * lanes();

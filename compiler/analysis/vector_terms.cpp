@@ -1,0 +1,169 @@
+// Decides, per sum taken each pair once (Newton's third law), whether its
+// pairs are packed and its term computed on vectors of pairs: runs after
+// symmetry, whose pair walk the packing serves (a sum evaluated both ways
+// keeps per-particle queries).
+//
+// A term has a vector form when every node of its condition and body does:
+// reals and vecs (a vec is one vector per component), literals and params,
+// dx and |dx|, particle variables of i or j stored as double (gathered by
+// index), + - * /, comparisons, and/or/not, if(c, a, b) (both sides
+// computed, one kept), and exp, log, sqrt, abs, min, max, tanh, sin, cos,
+// dot, norm and pow by an integer constant; a user function's call as its
+// body with the arguments put in. Ints, random draws, nested sums,
+// float storage and the remaining functions keep the scalar walk, and the
+// reason names the first such node. Sums only: a count or a min/max per pair
+// is not a per-lane term.
+#include "analysis/vector_terms.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "ir/constant.hpp"
+#include "ir/inline_calls.hpp"
+#include "ir/visitor.hpp"
+
+namespace partc {
+
+namespace {
+
+using namespace ir;
+
+// The first node without a vector form, described; empty when there is none.
+class VectorForm : public Visitor {
+ public:
+  VectorForm(const Model& model, int j_label) : model_(model), j_label_(j_label) {}
+  std::string obstacle;
+
+  using Visitor::visit;
+
+ protected:
+  void visit(const Literal&) override {}
+  void visit(const ParamRef& n) override { scalar_value(model_.params[n.param].type, "param"); }
+  void visit(const ConstRef& n) override { scalar_value(model_.consts[n.constant].type, "const"); }
+  void visit(const ObservableRef& n) override {
+    scalar_value(model_.observables[n.observable].type, "observable");
+  }
+  void visit(const VarRef& n) override {
+    const Variable& var = model_.sets[n.set].vars[n.var];
+    if (n.label != 0 && n.label != j_label_)
+      refuse("a variable of another sum's particle (" + var.name + ")");
+    else if (var.type != Type::Real && var.type != Type::Vec)
+      refuse(std::string(type_name(var.type)) + " variable " + var.name);
+    else if (var.storage != Precision::Double)
+      refuse("variable " + var.name + ", stored as float");
+  }
+  void visit(const Dx&) override {}
+  void visit(const Random&) override { refuse("a random draw"); }
+  void visit(const FnArg&) override { refuse("a user function's argument"); }
+  void visit(const FnCall&) override { refuse("a user function's call"); }
+  void visit(const Accumulate&) override { refuse("a nested sum"); }
+  void visit(const Unary& n) override {
+    typed(n.operand, "an operation");
+    Visitor::visit(n);
+  }
+  void visit(const Binary& n) override {
+    if (n.op == BinaryOp::FloorDiv) refuse("//");
+    const bool logical = n.op == BinaryOp::And || n.op == BinaryOp::Or;
+    if (!logical && n.lhs->type == Type::Bool) refuse("a comparison of conditions");
+    typed(n.lhs, "an operand");
+    typed(n.rhs, "an operand");
+    Visitor::visit(n);
+  }
+  void visit(const Call& n) override {
+    switch (n.fn) {
+      case Function::Exp:
+      case Function::Log:
+      case Function::Sqrt:
+      case Function::Abs:
+      case Function::Min:
+      case Function::Max:
+      case Function::Tanh:
+      case Function::Sin:
+      case Function::Cos:
+      case Function::Dot:
+      case Function::Norm: break;
+      case Function::Pow: {
+        const std::optional<double> k = evaluate_constant(n.args[1], model_);
+        if (!(k && *k == std::floor(*k) && std::abs(*k) <= 32))
+          refuse("pow with an exponent that is not a small integer constant");
+        typed(n.args[0], "pow's base");
+        visit(n.args[0]);
+        return;
+      }
+      default: refuse(std::string(function_name(n.fn)) + "()");
+    }
+    for (const Expr& a : n.args) typed(a, std::string(function_name(n.fn)) + "'s argument");
+    Visitor::visit(n);
+  }
+  void visit(const Select& n) override {
+    typed(n.then, "if's value");
+    typed(n.otherwise, "if's value");
+    Visitor::visit(n);
+  }
+
+ private:
+  void refuse(const std::string& what) {
+    if (obstacle.empty()) obstacle = what;
+  }
+  // Values computed per pair are reals, vecs or conditions; an int is one
+  // only as a number the same for every pair (3, a param), which converts to
+  // a real exactly; int arithmetic stays scalar.
+  void typed(const Expr& e, const std::string& what) {
+    const bool number = e->kind == ExprKind::Literal || e->kind == ExprKind::ParamRef ||
+                        e->kind == ExprKind::ConstRef || e->kind == ExprKind::ObservableRef;
+    if (e->type == Type::Int && !number) refuse(what + " of type int");
+  }
+  // The same for every pair: any number broadcasts; ints convert exactly up to 2^53.
+  void scalar_value(Type type, const char* kind) {
+    if (type != Type::Real && type != Type::Int && type != Type::Bool)
+      refuse(std::string("a vec ") + kind);
+  }
+
+  const Model& model_;
+  int j_label_;
+};
+
+VectorTermFact judge(const Model& model, const Accumulate& acc) {
+  if (acc.reduction != Reduction::Sum)
+    return {false, std::string("scalar: a ") + reduction_name(acc.reduction) +
+                       " is not a sum of per-pair terms"};
+  if (acc.type != Type::Real && acc.type != Type::Vec) return {false, "scalar: a sum of ints"};
+  // User functions as their bodies, as codegen/simd_term.cpp emits them.
+  VectorForm form(model, acc.label);
+  for (const Expr& e : {acc.condition, acc.body}) {
+    if (!e) continue;
+    const Expr inlined = inline_calls(e, model);
+    if (!inlined) return {false, "scalar: its user functions call others too many times to inline"};
+    form.visit(inlined);
+  }
+  if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle};
+  return {true,
+          "on vectors of pairs: each point's pairs packed (compress-stores), the condition and "
+          "term computed a vector of pairs at a time, then given to both particles"};
+}
+
+}  // namespace
+
+VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport& symmetry,
+                                   bool enabled) {
+  VectorTermReport report;
+  for (const auto& [id, pairs] : symmetry) {
+    if (!pairs.newton) continue;
+    if (!enabled) {
+      report[id] = {false, "scalar, as --no-simd asks"};
+      continue;
+    }
+    for (const Stage& stage : model.stages)
+      for (const Statement& st : stage.statements)
+        for (const Accumulate* acc : accumulations_in(st))
+          if (acc->id == id)
+            report[id] = st.schedule.skin
+                             ? VectorTermFact{false,
+                                              "scalar: Verlet lists' pairs are walked a "
+                                              "pair at a time"}
+                             : judge(model, *acc);
+  }
+  return report;
+}
+
+}  // namespace partc

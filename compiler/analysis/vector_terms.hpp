@@ -1,0 +1,27 @@
+// Vector terms: which pair sums the generated code evaluates on vectors of
+// pairs (runtime/partc/simd/pair_batches.hpp) rather than pair by pair.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "analysis/symmetry.hpp"
+#include "ir/ir.hpp"
+
+namespace partc {
+
+struct VectorTermFact {
+  // True when the sum's condition and term have a vector form: every
+  // operation one that codegen/simd_term.cpp emits with Highway.
+  bool vector = false;
+  std::string reason;  // why or why not, in the model's terms (for --explain)
+};
+
+using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate::id
+
+// For each sum over neighbours taken each pair once (symmetry's newton);
+// `enabled` false (--no-simd) keeps every one scalar.
+VectorTermReport find_vector_terms(const ir::Model& model, const PairSymmetryReport& symmetry,
+                                   bool enabled);
+
+}  // namespace partc

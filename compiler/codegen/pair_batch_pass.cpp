@@ -1,0 +1,79 @@
+// Emits the pair walk of sums taken each pair once whose terms have a vector
+// form (analysis/vector_terms.cpp): the search packs the pairs into batches
+// (NeighbourSearch::for_each_pair_batch), a vector loop computes each sum's
+// term for a vector of pairs at a time (codegen/simd_term.cpp) into columns,
+// and a scalar loop then gives each pair's term to i and +-term to j, into
+// the same per-particle member vectors the scalar walk (pair_pass) fills.
+// i's terms arrive one by one rather than summed first, so the totals differ
+// from the scalar walk's by roundings, not by thread count.
+#include <fmt/format.h>
+
+#include "codegen/model_emitter.hpp"
+#include "codegen/simd_term.hpp"
+
+namespace partc::codegen {
+
+bool ModelEmitter::vector_terms(const Loop& l) const {
+  for (const Accumulate* acc : l.members) {
+    const auto fact = facts_.vector_terms.find(acc->id);
+    if (fact == facts_.vector_terms.end() || !fact->second.vector) return false;
+  }
+  return true;
+}
+
+void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
+                              NameTable& locals, const std::string& search,
+                              const std::string& kernel) {
+  const std::string i = names.labels[0];
+  const std::string j = names.labels[l.members.front()->label];
+  const std::string batch = locals.fresh("pairs"), tag = locals.fresh("d");
+  const std::string k = locals.fresh("k"), in_batch = locals.fresh("in_batch");
+  for (const Accumulate* acc : l.members)
+    linef("{}.assign({}, {});", pair_sums_member(*acc, kernel), count, identity(*acc));
+  line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
+  line("// together (partc/simd), then given to i and j.");
+  linef("{}.for_each_pair_batch(true, [&](partc::simd::PairBatch<{}>& {}) {{", search, m_.dim,
+        batch);
+  line("namespace hn = partc::simd::hn;");
+  linef("const partc::simd::Real {};", tag);
+  const SimdTermCode code = emit_simd_terms(l.members, m_, names, locals, batch, k, tag, in_batch);
+  // One column per component of each term, kept for the scatter.
+  std::vector<std::vector<std::string>> columns;
+  std::size_t column_count = 0;
+  for (const auto& term : code.terms) column_count += term.size();
+  linef("{}.columns({});", batch, column_count);
+  std::size_t next = 0;
+  for (std::size_t a = 0; a < l.members.size(); ++a) {
+    columns.emplace_back();
+    for (std::size_t c = 0; c < code.terms[a].size(); ++c) {
+      columns.back().push_back(locals.fresh("term_" + std::to_string(next)));
+      linef("double* const {} = {}.column({});", columns.back().back(), batch, next++);
+    }
+  }
+  for (const std::string& text : code.setup) line(text);
+  linef("for (std::size_t {0} = 0; {0} < {1}.padded(); {0} += hn::Lanes({2})) {{", k, batch, tag);
+  linef("const auto {} = hn::FirstN({}, {}.count() - {});", in_batch, tag, batch, k);
+  for (const std::string& text : code.lines) line(text);
+  for (std::size_t a = 0; a < l.members.size(); ++a)
+    for (std::size_t c = 0; c < columns[a].size(); ++c)
+      linef("hn::StoreU({}, {}, {} + {});", code.terms[a][c], tag, columns[a][c], k);
+  line("}");
+  linef("for (std::size_t {0} = 0; {0} < {1}.count(); ++{0}) {{", k, batch);
+  linef("const std::size_t {} = {}.i()[{}], {} = {}.j()[{}];", i, batch, k, j, batch, k);
+  for (std::size_t a = 0; a < l.members.size(); ++a) {
+    const Accumulate& acc = *l.members[a];
+    std::vector<std::string> parts;
+    for (const std::string& column : columns[a]) parts.push_back(column + "[" + k + "]");
+    const std::string term = acc.type == Type::Vec
+                                 ? fmt::format("Vec{{{{{}}}}}", fmt::join(parts, ", "))
+                                 : parts.front();
+    const std::string& sums = pair_sums_.at(acc.id).first;
+    linef("{}[{}] += {};", sums, i, term);
+    linef("if ({2} != {1}) {0}[{2}] {3}= {4};", sums, i, j,
+          facts_.symmetry.at(acc.id).sign > 0 ? "+" : "-", term);
+  }
+  line("}");
+  line("});");
+}
+
+}  // namespace partc::codegen
