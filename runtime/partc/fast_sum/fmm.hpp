@@ -107,7 +107,7 @@ class Fmm {
       stats_.leaf_size = leaf;
       interactions_ = find_interactions(target_tree_, source_tree_, symmetries_, nodes());
       predicted_ =
-          predict_errors<D>(kernel_, target_tree_, source_tree_, interactions_, accuracy.field);
+          predict_errors<D>(kernel_, target_tree_, source_tree_, interactions_, accuracy.field, p);
       for (double& e : predicted_) e *= 1 + compression_share;
     };
     auto cheapest = [&] {
