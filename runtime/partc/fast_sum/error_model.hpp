@@ -23,7 +23,8 @@
 // 1.08e-9). Now each kind of far pair gets a pilot of 16 samples, then a
 // budget of 384 p more (p the order being planned, as the tail grows with
 // it) is shared among the kinds by their part of the error (Neyman
-// allocation): about 20 to 50 ms a plan at N = 1e4 to 1e5 on one core.
+// allocation): 40 to 130 ms a prediction (16 samples: 15 to 100 ms) at N =
+// 1e4 to 1e5 on one loaded core, two to four predictions a plan.
 //
 // Calibration: measured against predicted (error_model_calibration = 1)
 // for 1/r, multiquadrics (e = 1, 3) and a Gaussian (e = 3), uniform and
@@ -33,10 +34,10 @@
 // no kernel family apart (so one constant, not one per family). Much of the
 // spread is the draw's sum, not the error: far fields have few degrees of
 // freedom, so a draw's sum^2 is typically 0.3 to 0.9 of its expected value
-// (divided by that instead, the error is 0.8 +- 30% of the model's at N =
-// 1e4). 2.5 puts every pooled measurement at or below 0.78 tol. The M2L
-// compression's error (low_rank.hpp) did not show: without it the measured
-// error changed by 1 to 4%.
+// (divided by that instead: 0.5 to 1.1, median 0.78, at N = 1e4; 0.7 to 1.2
+// at 1e5). 2.5 puts every pooled measurement at or below 0.78 of the
+// prediction. The M2L compression's error (low_rank.hpp) did not show:
+// without it the measured error changed by 1 to 4%.
 //
 // Surprises:
 // - cross-level pairs (M2P, P2L) interpolate only in the smaller box.
@@ -49,8 +50,9 @@
 //   charges in [-1, 1] do it: at N = 1e5, bench_fast_sum's draw has a total
 //   0.22 of its standard deviation, and its multiquadric sums are 0.02 of
 //   their expected square, so the measured error is 2 to 4x the prediction
-//   (three other draws: 0.5 to 2.7 of it, and the error as predicted). The
-//   sample check (accuracy.hpp) measures the realised error.
+//   (six other draws: sums 0.2 to 2.7 of their expected square, the error
+//   itself as predicted). The sample check (accuracy.hpp) measures the
+//   realised error.
 // - the field (the vector kernel) uses the potential's prediction.
 #pragma once
 
