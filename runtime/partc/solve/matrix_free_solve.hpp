@@ -174,6 +174,7 @@ template <int D, class T, class Apply, class Entry>
   result.method = "GMRES(" + std::to_string(options.gmres_restart) + ") + restricted Schwarz (" +
                   std::to_string(schwarz.clusters()) + " blocks of up to " +
                   std::to_string(schwarz.largest_block()) + ", " +
+                  std::to_string(schwarz.double_blocks()) + " in double, " +
                   std::to_string(schwarz.coarse_points()) + " coarse points), matrix-free";
   result.n = n;
   result.x = Eigen::VectorXd::Zero(n);

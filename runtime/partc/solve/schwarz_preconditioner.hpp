@@ -19,6 +19,20 @@
 // (restricted: the overlap shapes the answer but no point is written twice,
 // so nothing depends on the order of clusters or threads).
 //
+// Blocks in float: the blocks are the preconditioner's memory, and in double
+// N = 1e6 needed 9 GB. A block is LU-factored in float, its substitutions
+// done in double (rounding them in float too lost 5-10% per block solve and
+// cost Franke's solve 26 -> 40 iterations at N = 1e5); GMRES still iterates
+// to the double residual. If a solve with the float LU misses a known answer
+// by more than float_error (ill-conditioned blocks: flat kernels, where it
+// may miss by 500% or give inf), that block is factored in double instead.
+// Measured (bench_matrix_free_solve, Franke, eps h = 0.5): block misses 0.5%
+// at N = 1e4 to 2.7% at 1e6, none in double; iterations and the answer as
+// in double (17 at 1e4, 26 at 1e5; the interpolant 3e-10 apart); peak memory
+// 847 -> 643 MB at 1e5, and the preconditioner alone 4.7 GB at 1e6. At eps h
+// = 0.3 (N = 900) every block misses by 25% or more, all-float GMRES does not
+// converge, and the check puts them all in double (63 iterations).
+//
 // Coarse level (multiplicative, as Beatson, Light & Billings 2000 do for RBF
 // interpolation): every coarse_stride-th point in the clusters' order (so
 // spread over the domain), at most coarse_max of them; A on them is
@@ -32,9 +46,10 @@
 //
 // Costs: the split O(N log N); growing the clusters O(N^2 / cluster_size)
 // distance tests; the blocks (overlap * cluster_size)^3 * 2/3 flops and
-// (overlap * cluster_size)^2 doubles each (at the defaults 1.2 MB per 128
-// points); the coarse LU (N / coarse_stride)^3 * 2/3 flops; apply one
-// product A z plus 2 (overlap * cluster_size)^2 flops per cluster.
+// (overlap * cluster_size)^2 floats each (at the defaults 0.6 MB per 128
+// points; doubles where float fails); the coarse LU (N / coarse_stride)^3 *
+// 2/3 flops; apply one product A z plus 2 (overlap * cluster_size)^2 flops
+// per cluster.
 #pragma once
 
 #include <Eigen/Dense>
@@ -54,6 +69,9 @@ struct SchwarzOptions {
   double overlap = 3.0;            // a grown cluster's points over its own
   std::size_t coarse_stride = 16;  // one coarse point per this many; 0: no coarse level
   std::size_t coarse_max = 3000;   // coarse points at most (their LU is dense)
+  // A block's LU is kept in float when a solve with it is off by at most this
+  // (relative, measured on one vector), else in double; 0: all in double.
+  double float_error = 5e-2;
 };
 
 template <int D>
@@ -79,7 +97,7 @@ class RestrictedSchwarz {
       Eigen::MatrixXd a(m, m);
       for (Eigen::Index r = 0; r < m; ++r)
         for (Eigen::Index s = 0; s < m; ++s) a(r, s) = entry(block.grown[r], block.grown[s]);
-      block.lu.compute(a);
+      factor(a, options.float_error, block);
       for (std::size_t i : clusters_[c])
         block.own_at.push_back(static_cast<Eigen::Index>(
             std::lower_bound(block.grown.begin(), block.grown.end(), i) - block.grown.begin()));
@@ -115,7 +133,8 @@ class RestrictedSchwarz {
       Eigen::VectorXd local(static_cast<Eigen::Index>(block.grown.size()));
       for (std::size_t k = 0; k < block.grown.size(); ++k)
         local[static_cast<Eigen::Index>(k)] = r[static_cast<Eigen::Index>(block.grown[k])];
-      const Eigen::VectorXd solved = block.lu.solve(local);
+      const Eigen::VectorXd solved = block.in_double ? Eigen::VectorXd(block.lu_double.solve(local))
+                                                     : solve_in_double(block.lu, local);
       for (std::size_t k = 0; k < clusters_[c].size(); ++k)
         z[static_cast<Eigen::Index>(clusters_[c][k])] = solved[block.own_at[k]];
     });
@@ -125,6 +144,11 @@ class RestrictedSchwarz {
   std::size_t clusters() const { return clusters_.size(); }
   std::size_t coarse_points() const { return coarse_.size(); }
   std::size_t size() const { return n_; }
+  // Blocks whose LU is in double: a float one was off by more than float_error.
+  std::size_t double_blocks() const {
+    return static_cast<std::size_t>(
+        std::count_if(blocks_.begin(), blocks_.end(), [](const Block& b) { return b.in_double; }));
+  }
   // The largest grown cluster: the blocks' size.
   std::size_t largest_block() const {
     std::size_t largest = 0;
@@ -136,8 +160,45 @@ class RestrictedSchwarz {
   struct Block {
     std::vector<std::size_t> grown;  // sorted point indices
     std::vector<Eigen::Index> own_at;  // where each own point sits in grown
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    Eigen::PartialPivLU<Eigen::MatrixXf> lu;         // empty when in_double
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu_double;  // empty unless in_double
+    bool in_double = false;
   };
+
+  // The float LU's solve, its substitutions in double: rounding them in
+  // float too would lose several times more.
+  static Eigen::VectorXd solve_in_double(const Eigen::PartialPivLU<Eigen::MatrixXf>& lu,
+                                         const Eigen::VectorXd& b) {
+    Eigen::VectorXd y = lu.permutationP() * b;
+    const Eigen::MatrixXf& f = lu.matrixLU();
+    const Eigen::Index m = f.rows();
+    for (Eigen::Index k = 0; k + 1 < m; ++k)
+      y.tail(m - k - 1) -= f.col(k).tail(m - k - 1).cast<double>() * y[k];
+    for (Eigen::Index k = m - 1; k >= 0; --k) {
+      y[k] /= double(f(k, k));
+      y.head(k) -= f.col(k).head(k).cast<double>() * y[k];
+    }
+    return y;
+  }
+
+  // The block's LU in float, unless solving a x = a t with it misses a known
+  // t by more than max_error (relative): then in double. The miss is the
+  // float LU's backward error (float rounding of a) amplified by a's
+  // conditioning, the thing that decides whether the float block still
+  // approximates a^-1; t's entries are generic enough that the rounding
+  // excites every direction.
+  static void factor(const Eigen::MatrixXd& a, double max_error, Block& block) {
+    if (max_error > 0) {
+      block.lu.compute(a.cast<float>());
+      const Eigen::VectorXd t =
+          (Eigen::ArrayXd::LinSpaced(a.rows(), 0, double(a.rows() - 1)).sin() + 1.5).matrix();
+      const Eigen::VectorXd at = a * t;
+      if ((solve_in_double(block.lu, at) - t).norm() <= max_error * t.norm()) return;
+      block.lu = Eigen::PartialPivLU<Eigen::MatrixXf>();
+    }
+    block.lu_double.compute(a);
+    block.in_double = true;
+  }
 
   template <class T>
   static std::pair<Vec<D>, Vec<D>> bounds(const std::vector<Vec<D, T>>& points,
