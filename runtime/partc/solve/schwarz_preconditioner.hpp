@@ -20,7 +20,7 @@
 // so nothing depends on the order of clusters or threads).
 //
 // Blocks in float: the blocks are the preconditioner's memory, and in double
-// N = 1e6 needed 9 GB. A block is LU-factored in float, its substitutions
+// N = 1e6 needed 8.7 GB. A block is LU-factored in float, its substitutions
 // done in double (rounding them in float too lost 5-10% per block solve and
 // cost Franke's solve 26 -> 40 iterations at N = 1e5); GMRES still iterates
 // to the double residual. If a solve with the float LU misses a known answer
@@ -28,8 +28,11 @@
 // may miss by 500% or give inf), that block is factored in double instead.
 // Measured (bench_matrix_free_solve, Franke, eps h = 0.5): block misses 0.5%
 // at N = 1e4 to 2.7% at 1e6, none in double; iterations and the answer as
-// in double (17 at 1e4, 26 at 1e5; the interpolant 3e-10 apart); peak memory
-// 847 -> 643 MB at 1e5, and the preconditioner alone 4.7 GB at 1e6; Kansa
+// in double (17 at 1e4, 26 at 1e5; the interpolant 7e-10 apart), and the
+// time; peak memory of the whole solve 847 -> 615 MB at 1e5, of the
+// preconditioner alone 8.7 -> 4.7 GB at 1e6 (its setup 4.5 min there in
+// float or double alike, so not the LUs: growing the clusters is
+// O(N^2 / cluster_size)); Kansa
 // (eps h = 0.6, N = 1e4), rows scaled: none in double, 31 iterations either
 // way. At eps h = 0.3 (Franke, N = 900) every block misses by 25% or more,
 // all-float GMRES does not converge, and the check puts them all in double
@@ -45,6 +48,13 @@
 // number of clusters (measured on Franke's multiquadric interpolation,
 // eps h = 0.5, N = 1e4: 145 GMRES iterations with the local level alone, 16
 // with both).
+//
+// The coarse cap is what limits N now, not memory: the iterations hang on
+// coarse_stride, and the cap raises it beyond N = 16 coarse_max (measured,
+// Franke at N = 1e5: 1491 coarse points 337 iterations, 2937 26, 5874 13).
+// At N = 1e6 the cap leaves every 334th point, sparser than the 1e5 run
+// that took 337; a coarse level that grows with N needs its own iterative
+// (multilevel) solve, not a bigger dense LU ((N / 16)^2 entries).
 //
 // Costs: the split O(N log N); growing the clusters O(N^2 / cluster_size)
 // distance tests; the blocks (overlap * cluster_size)^3 * 2/3 flops and
