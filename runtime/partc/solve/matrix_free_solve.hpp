@@ -15,8 +15,9 @@
 //   options.name = "w";
 //   options.tolerance = 1e-8;
 //   const partc::SolveResult r = partc::solve_matrix_free(points, apply, entry, f, options);
-//   // solve w: GMRES(100) + restricted Schwarz (16 blocks of up to 171, 57 coarse
-//   //   points), matrix-free, n = 900, 18 iterations, residual 3.0e-12, 0.49 s
+//   // solve w: GMRES(100) + restricted Schwarz (16 blocks of up to 171, 0 in
+//   //   double, 57 coarse points), matrix-free, n = 900, 18 iterations,
+//   //   residual 3.0e-12, 0.49 s
 //
 // The residual is the true ||A x - b|| / ||b|| with A as apply() computes
 // it (krylov_restarts.hpp): with a fast sum, A is the fast sum's, whose
@@ -35,6 +36,8 @@
 //   meets tolerance.
 // - The preconditioner (schwarz_preconditioner.hpp) applies A once more for
 //   its coarse level: an iteration costs two products.
+// - The preconditioner's blocks are LU-factored in float, except those too
+//   ill-conditioned for it ("k in double" in the summary).
 // - Flat kernels (multiquadrics or Gaussians whose shape parameter times the
 //   node spacing is well below 0.3; condition numbers above about 1e10) may
 //   not converge at all; a dense LU (solve_dense) still answers those, at n^3.
