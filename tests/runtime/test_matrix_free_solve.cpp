@@ -80,7 +80,7 @@ TEST_CASE("restricted Schwarz inverts a block-diagonal matrix, to rounding",
 }
 
 TEST_CASE("blocks too ill-conditioned for float are factored in double", "[solve][matrix_free]") {
-  // Flatter multiquadrics, eps times the spacing 0.3 (condition about 1e10):
+  // Flatter multiquadrics, eps times the spacing 0.3 (blocks of condition 1e9):
   // a float LU of these blocks misses by 25% to 500% (measured), and GMRES
   // with all of them in float does not converge; in double it does.
   const int n = 30;
