@@ -64,7 +64,7 @@ included, median of --repeats runs (3 by default), with OMP_NUM_THREADS =
 
 The program is built like tests/CMakeLists.txt builds models: partc (--partc,
 or from --build-dir, else the newest build*/compiler/partc) writes MODEL.cpp with
---main, then g++ -O2 -march=native (--cxx-flags) -std=c++17 -fopenmp with runtime/ (and Eigen) on the
+--main, then g++ -O2 -march=native -ffp-contract=off (--cxx-flags) -std=c++17 -fopenmp with runtime/ (and Eigen) on the
 include path, into --work (BUILD_DIR/sweep by default); a build whose C++
 did not change is reused. --program EXE runs a program built elsewhere
 (CMake's partc_add_model) instead.
@@ -412,9 +412,10 @@ def parse_arguments(argv):
     parser.add_argument("--expected-label")
     parser.add_argument("--build-dir", help="a build directory holding compiler/partc")
     parser.add_argument("--partc", help="the partc to use (instead of BUILD_DIR/compiler/partc)")
-    parser.add_argument("--cxx-flags", default="-O2 -march=native",
-                        help="the C++ compiler's optimisation flags (default -O2 -march=native: "
-                        "vectors as wide as the machine has, as CMake's PARTC_NATIVE)")
+    parser.add_argument("--cxx-flags", default="-O2 -march=native -ffp-contract=off",
+                        help="the C++ compiler's optimisation flags (default -O2 -march=native "
+                        "-ffp-contract=off: vectors as wide as the machine has, each operation "
+                        "rounded as written, as CMake's PARTC_NATIVE)")
     parser.add_argument("--program", help="a driver program built elsewhere (param knobs only)")
     parser.add_argument("--work", help="where builds and logs go (default: BUILD_DIR/sweep, "
                                        "or beside --program)")

@@ -304,17 +304,19 @@ TEST_CASE("solve_sparse: CG solves the 1D Laplacian -u'' = 2 exactly", "[solve][
   partc::SparseSolveOptions options;
   options.name = "u";
   options.method = partc::KrylovMethod::cg;
-  options.tolerance = 1e-12;
+  // Above the residual double precision can promise, eps cond(A) = 3.5e-12:
+  // 1e-12 was met on SSE2 and missed by 10% with AVX-512's sums.
+  options.tolerance = 1e-11;
 
   SECTION("diagonal preconditioner") {
     const partc::SolveResult r = partc::solve_sparse(p.A, p.f, options);
     CHECK(r.method == "CG + diagonal");
     CHECK(r.converged);
     CHECK(r.warning.empty());
-    CHECK(r.residual <= 1e-12);
+    CHECK(r.residual <= 1e-11);
     CHECK(r.residual == (p.A * r.x - p.f).norm() / p.f.norm());
-    // Condition number 4 (n + 1)^2 / pi^2 = 1.6e4 turns 1e-12 into 2e-8 at most.
-    CHECK((r.x - p.u).lpNorm<Eigen::Infinity>() < 2e-8 * p.u.lpNorm<Eigen::Infinity>());
+    // Condition number 4 (n + 1)^2 / pi^2 = 1.6e4 turns 1e-11 into 2e-7 at most.
+    CHECK((r.x - p.u).lpNorm<Eigen::Infinity>() < 2e-7 * p.u.lpNorm<Eigen::Infinity>());
     REQUIRE(r.iterations);
     // In exact arithmetic CG ends after as many iterations as f has
     // eigencomponents: f is symmetric about the middle, so n / 2 = 100
