@@ -87,12 +87,8 @@ class PairBatch {
     reserve(1);
     i_[count_] = i;
     j_[count_] = j;
-    double r2 = 0;
-    for (int d = 0; d < D; ++d) {
-      dx_[d][count_] = dx[d];
-      r2 += dx[d] * dx[d];
-    }
-    r2_[count_++] = r2;
+    for (int d = 0; d < D; ++d) dx_[d][count_] = dx[d];
+    r2_[count_++] = squared_norm(dx);
   }
 
   // Point i's candidates first .. stop-1 of coordinate arrays x, seen from
