@@ -269,9 +269,9 @@ class AccumulationFinder : public ir::Visitor {
     CoincidenceFact fact;
     CoincidentTerms terms(model_, acc.label);
     const Singularity found = terms.singular(acc.body, {});
+    fact.excluded = acc.condition && terms.nonzero_if(acc.condition, true, {});
     if (found.at) {
       fact.singular = true;
-      fact.excluded = acc.condition && terms.nonzero_if(acc.condition, true, {});
       const std::string zero = text(found.at->loc);
       const ir::Label& to = statement->labels[acc.label];
       const bool self = terms.from() >= 0 && statement->labels[terms.from()].set == to.set &&

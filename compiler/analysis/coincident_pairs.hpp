@@ -13,7 +13,7 @@ namespace partc {
 
 struct CoincidenceFact {
   bool singular = false;  // the term divides by (or takes log of, ...) something 0 at |dx| = 0
-  bool excluded = false;  // the condition, or an if() around it, excludes |dx| = 0
+  bool excluded = false;  // the condition excludes |dx| = 0 (so i's pair with itself)
   std::string reason;     // for --explain; empty when the term is not singular
   std::optional<Diagnostic> warning;  // singular and not excluded
 };

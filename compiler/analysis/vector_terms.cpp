@@ -123,7 +123,7 @@ class VectorForm : public Visitor {
   int j_label_;
 };
 
-VectorTermFact judge(const Model& model, const Accumulate& acc) {
+VectorTermFact judge(const Model& model, const Accumulate& acc, bool excludes_coincident) {
   if (acc.reduction != Reduction::Sum)
     return {false, std::string("scalar: a ") + reduction_name(acc.reduction) +
                        " is not a sum of per-pair terms"};
@@ -138,14 +138,24 @@ VectorTermFact judge(const Model& model, const Accumulate& acc) {
   }
   if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle};
   return {true,
-          "on vectors of pairs: each point's pairs packed (compress-stores), the condition and "
-          "term computed a vector of pairs at a time, then given to both particles"};
+          std::string("on vectors of pairs: each point's pairs packed (compress-stores), the "
+                      "condition and term computed a vector of pairs at a time, then given to "
+                      "both particles") +
+              (excludes_coincident ? "; i's pair with itself left out, as the condition "
+                                     "excludes |dx| = 0"
+                                   : ""),
+          !excludes_coincident};
+}
+
+bool excludes_coincident(const CoincidenceReport& coincident, int id) {
+  const auto fact = coincident.find(id);
+  return fact != coincident.end() && fact->second.excluded;
 }
 
 }  // namespace
 
 VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport& symmetry,
-                                   bool enabled) {
+                                   const CoincidenceReport& coincident, bool enabled) {
   VectorTermReport report;
   for (const auto& [id, pairs] : symmetry) {
     if (!pairs.newton) continue;
@@ -161,7 +171,7 @@ VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport&
                              ? VectorTermFact{false,
                                               "scalar: Verlet lists' pairs are walked a "
                                               "pair at a time"}
-                             : judge(model, *acc);
+                             : judge(model, *acc, excludes_coincident(coincident, id));
   }
   return report;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/coincident_pairs.hpp"
 #include "analysis/symmetry.hpp"
 #include "ir/ir.hpp"
 
@@ -15,6 +16,9 @@ struct VectorTermFact {
   // operation one that codegen/simd_term.cpp emits with Highway.
   bool vector = false;
   std::string reason;  // why or why not, in the model's terms (for --explain)
+  // Whether the walk must give i's pair with itself (dx = 0): not when the
+  // condition excludes |dx| = 0, where that term would be masked to 0.
+  bool self_pair = true;
 };
 
 using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate::id
@@ -22,6 +26,6 @@ using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate:
 // For each sum over neighbours taken each pair once (symmetry's newton);
 // `enabled` false (--no-simd) keeps every one scalar.
 VectorTermReport find_vector_terms(const ir::Model& model, const PairSymmetryReport& symmetry,
-                                   bool enabled);
+                                   const CoincidenceReport& coincident, bool enabled);
 
 }  // namespace partc

@@ -27,16 +27,20 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
   const std::string i = names.labels[0];
   const std::string j = names.labels[l.members.front()->label];
   const std::string batch = locals.fresh("pairs"), tag = locals.fresh("d");
-  const std::string k = locals.fresh("k"), in_batch = locals.fresh("in_batch");
-  for (const Accumulate* acc : l.members)
+  const std::string k = locals.fresh("k");
+  bool self_pair = false;
+  for (const Accumulate* acc : l.members) {
     linef("{}.assign({}, {});", pair_sums_member(*acc, kernel), count, identity(*acc));
+    self_pair = self_pair || facts_.vector_terms.at(acc->id).self_pair;
+  }
   line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
   line("// together (partc/simd), then given to i and j.");
-  linef("{}.for_each_pair_batch(true, [&](partc::simd::PairBatch<{}>& {}) {{", search, m_.dim,
-        batch);
+  if (!self_pair) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
+  linef("{}.for_each_pair_batch({}, [&](partc::simd::PairBatch<{}>& {}) {{", search, self_pair,
+        m_.dim, batch);
   line("namespace hn = partc::simd::hn;");
   linef("const partc::simd::Real {};", tag);
-  const SimdTermCode code = emit_simd_terms(l.members, m_, names, locals, batch, k, tag, in_batch);
+  const SimdTermCode code = emit_simd_terms(l.members, m_, names, locals, batch, k, tag);
   // One column per component of each term, kept for the scatter.
   std::vector<std::vector<std::string>> columns;
   std::size_t column_count = 0;
@@ -51,8 +55,8 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
     }
   }
   for (const std::string& text : code.setup) line(text);
+  // The padding's terms are computed too (from harmless entries) and never read.
   linef("for (std::size_t {0} = 0; {0} < {1}.padded(); {0} += hn::Lanes({2})) {{", k, batch, tag);
-  linef("const auto {} = hn::FirstN({}, {}.count() - {});", in_batch, tag, batch, k);
   for (const std::string& text : code.lines) line(text);
   for (std::size_t a = 0; a < l.members.size(); ++a)
     for (std::size_t c = 0; c < columns[a].size(); ++c)

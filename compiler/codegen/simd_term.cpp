@@ -321,8 +321,8 @@ class Emitter {
 
 SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const Model& model,
                              const ExpressionNames& names, NameTable& locals,
-                             const std::string& batch, const std::string& k, const std::string& tag,
-                             const std::string& in_batch) {
+                             const std::string& batch, const std::string& k,
+                             const std::string& tag) {
   Emitter emit(model, names, locals, batch, k, tag);
   SimdTermCode code;
   for (const Accumulate* acc : accs) {
@@ -330,9 +330,7 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
     const Expr condition = acc->condition ? inline_calls(acc->condition, model) : nullptr;
     const Expr body = inline_calls(acc->body, model);
     if ((acc->condition && !condition) || !body) internal_error("simd_term: a call not inlined");
-    const std::string when =
-        condition ? emit.declare(fmt::format("hn::And({}, {})", in_batch, emit.mask(condition)))
-                  : in_batch;
+    const std::string when = condition ? emit.mask(condition) : "";
     std::vector<std::string> parts;
     if (acc->type == Type::Real) {
       parts.push_back(emit.real(body));
@@ -342,8 +340,9 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
     }
     // Masked after the arithmetic: a NaN where the condition fails (0 / 0 at i's own pair) is
     // dropped.
-    for (std::string& part : parts)
-      part = emit.declare(fmt::format("hn::IfThenElseZero({}, {})", when, part));
+    if (!when.empty())
+      for (std::string& part : parts)
+        part = emit.declare(fmt::format("hn::IfThenElseZero({}, {})", when, part));
     code.terms.push_back(parts);
   }
   code.setup = emit.setup;

@@ -17,18 +17,18 @@ struct SimdTermCode {
   std::vector<std::string> setup;  // statements before the loop (broadcasts)
   std::vector<std::string> lines;  // statements of the loop body, in order
   // Per sum: the vectors of its term's components (one for a real sum, one
-  // per dimension for a vec), zero where its condition fails or past the batch.
+  // per dimension for a vec), zero where its condition fails.
   std::vector<std::vector<std::string>> terms;
 };
 
 // The loop body for the sums `accs`, of one walk: `batch` names the PairBatch,
-// `k` the first pair of the vector, `tag` the vector tag (partc::simd::Real)
-// and `in_batch` a mask of the lanes before the batch's end; `names` names the
-// kernel's params, consts, observables and arrays; the body's locals are
-// drawn from `locals`.
+// `k` the first pair of the vector and `tag` the vector tag (partc::simd::Real)
+// (lanes past the batch's end, its padding, are computed like the others);
+// `names` names the kernel's params, consts, observables and arrays; the
+// body's locals are drawn from `locals`.
 SimdTermCode emit_simd_terms(const std::vector<const ir::Accumulate*>& accs, const ir::Model& model,
                              const ExpressionNames& names, NameTable& locals,
-                             const std::string& batch, const std::string& k, const std::string& tag,
-                             const std::string& in_batch);
+                             const std::string& batch, const std::string& k,
+                             const std::string& tag);
 
 }  // namespace partc::codegen

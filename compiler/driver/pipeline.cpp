@@ -43,8 +43,12 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   c.facts.aliasing = detect_aliasing(c.model, c.facts.uniform_sums);
   c.facts.neighbourhoods = find_neighbourhoods(c.model, file.text());
   c.facts.symmetry = find_pair_symmetry(c.model);
-  // Which of the sums taken each pair once compute their terms on vectors of pairs.
-  c.facts.vector_terms = find_vector_terms(c.model, c.facts.symmetry, passes.simd);
+  // Terms that are NaN or Inf for coincident particles (warnings, at the end),
+  // and conditions that keep coincident pairs out.
+  c.coincident = find_coincident_pairs(c.model, file.text());
+  // Which of the sums taken each pair once compute their terms on vectors of
+  // pairs, and whether their walk needs i's pair with itself.
+  c.facts.vector_terms = find_vector_terms(c.model, c.facts.symmetry, c.coincident, passes.simd);
   // A solve's matrix: dense or sparse as its sums' neighbourhoods say.
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known; so
@@ -63,8 +67,6 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   c.facts.fusion = fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry,
                                    c.facts.searches, c.facts.observed_steps, file,
                                    passes.fuse_statements);
-  // Terms that are NaN or Inf for coincident particles: warnings only.
-  c.coincident = find_coincident_pairs(c.model, file.text());
   for (const auto& [id, fact] : c.coincident)
     if (fact.warning) c.warnings.push_back(*fact.warning);
 }

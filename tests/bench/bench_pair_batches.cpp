@@ -71,7 +71,8 @@ void sum_scalar(const partc::OrderedCellList<2>& cells, double rc, std::vector<V
 }
 
 // The packed walk: the term per component on vectors of pairs, masked by the
-// sum's condition and the batch's length, kept in two columns; then each
+// sum's condition (the padding's terms are computed and never read), kept in
+// two columns; then each
 // pair's term scattered to both ends (i +=, j -=), after the vector loop so
 // as not to serialise it. No pair (i, i): the condition |dx| > 0 excludes it.
 // The term's scalar factors taken together, -exp(-r) / r, times dx: one
@@ -90,8 +91,7 @@ void sum_batches(const partc::OrderedCellList<2>& cells, simd::PairBatches<2>& b
     for (std::size_t k = 0; k < b.padded(); k += lanes) {
       const auto dx0 = hn::LoadU(d, b.dx(0) + k), dx1 = hn::LoadU(d, b.dx(1) + k);
       const auto dx_norm = hn::Sqrt(hn::LoadU(d, b.r2() + k));
-      auto when = hn::And(hn::Lt(dx_norm, rc_v), hn::Gt(dx_norm, zero));
-      if (k + lanes > b.count()) when = hn::And(when, hn::FirstN(d, b.count() - k));
+      const auto when = hn::And(hn::Lt(dx_norm, rc_v), hn::Gt(dx_norm, zero));
       const auto scale =
           hn::IfThenElseZero(when, hn::Div(hn::Neg(hn::Exp(d, hn::Neg(dx_norm))), dx_norm));
       hn::StoreU(hn::Mul(scale, dx0), d, term0 + k);
