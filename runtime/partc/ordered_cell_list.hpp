@@ -32,6 +32,7 @@
 
 #include "partc/cell_grid.hpp"
 #include "partc/domain.hpp"
+#include "partc/parallel.hpp"
 #include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
@@ -44,19 +45,27 @@ class OrderedCellList {
   void build(const Domain<D>& domain, double radius, const std::vector<Vec<D, T>>& points) {
     const std::size_t n = points.size();
     grid_ = CellGrid<D>(domain, radius, n);
+    // Each point's cell and the sorted copy in parallel; the counting sort
+    // between them serially (its result, the stable order, is unique anyway).
     cell_of_point_.resize(n);
-    start_.assign(grid_.cell_count() + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
+    parallel_for(n, LoopWork::light, [&](std::size_t i) {
       cell_of_point_[i] = grid_.cell_of(domain.wrap(points[i]));
-      ++start_[cell_of_point_[i]];
-    }
+    });
+    start_.assign(grid_.cell_count() + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_point_[i]];
     // Inclusive prefix sums make start_[c] the end of cell c (and start_.back() = n);
     // filling backwards keeps the original order and moves it down to the start of cell c.
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     order_.resize(n);
-    for (std::size_t i = n; i-- > 0;) order_[--start_[cell_of_point_[i]]] = i;
+    cell_of_sorted_.resize(n);
+    for (std::size_t i = n; i-- > 0;) {
+      const std::size_t k = --start_[cell_of_point_[i]];
+      order_[k] = i;
+      cell_of_sorted_[k] = cell_of_point_[i];
+    }
     points_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) points_[k] = domain.wrap(points[order_[k]]);
+    parallel_for(n, LoopWork::light,
+                 [&](std::size_t k) { points_[k] = domain.wrap(points[order_[k]]); });
     make_pair_slabs(build_runs_of_cells());
   }
 
@@ -212,23 +221,48 @@ class OrderedCellList {
   // Returns whether every run stays within its cell's plane and the next,
   // or, from plane 0, reaches only the last plane (across the periodic edge).
   bool build_runs_of_cells() {
-    const std::size_t n = points_.size();
-    cell_of_sorted_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) cell_of_sorted_[k] = cell_of_point_[order_[k]];
     runs_.clear();
     run_start_.assign(grid_.cell_count() + 1, 0);
     if (!grid_.shifts_suffice()) return false;
+    // In parallel, by blocks of cells: each block's runs depend on the block
+    // alone, and are joined in block order, so nothing depends on the threads.
+    const std::size_t blocks = (grid_.cell_count() + cells_per_block - 1) / cells_per_block;
+    block_runs_.resize(blocks);
+    std::vector<char> block_within(blocks);
+    parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
+      const std::size_t first = b * cells_per_block;
+      block_within[b] = runs_of_cells(first, std::min(grid_.cell_count(), first + cells_per_block),
+                                      block_runs_[b]);
+    });
+    bool within_next_plane = true;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t offset = runs_.size();
+      for (std::size_t c = b * cells_per_block;
+           c < std::min(grid_.cell_count(), (b + 1) * cells_per_block); ++c)
+        run_start_[c] += offset;
+      runs_.insert(runs_.end(), block_runs_[b].begin(), block_runs_[b].end());
+      within_next_plane = within_next_plane && block_within[b];
+    }
+    run_start_.back() = runs_.size();
+    return within_next_plane;
+  }
+
+  // build_runs_of_cells for cells from .. until-1: their runs into `runs`
+  // (run_start_ relative to it); whether each stays within its cell's plane
+  // and the next (from plane 0, or the last plane across the periodic edge).
+  bool runs_of_cells(std::size_t from, std::size_t until, std::vector<Run>& runs) {
+    runs.clear();
     // Cells are numbered plane by plane (planes of cells along dimension 0):
     // cell c lies in plane a, which ends at cell next_plane, the one after at
     // after_next.
     const std::size_t per_plane = grid_.cell_count() / grid_.cells_along(0);
     const std::size_t last_plane = grid_.cell_count() - per_plane;
-    std::size_t a = 0, next_plane = per_plane;
+    std::size_t a = from / per_plane, next_plane = (a + 1) * per_plane;
     bool within_next_plane = true;
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+    for (std::size_t c = from; c < until; ++c) {
       if (c == next_plane) ++a, next_plane += per_plane;
       const std::size_t after_next = next_plane + per_plane;
-      run_start_[c] = runs_.size();
+      run_start_[c] = runs.size();
       // A point with a NaN or Inf coordinate has no neighbours: it does not widen the box.
       bool any = false;
       Vec<D> lo{}, hi{};
@@ -244,13 +278,12 @@ class OrderedCellList {
       grid_.for_each_run_of_box(
           lo, hi, [&](std::size_t first, std::size_t last, const Vec<D>& shift, auto) {
             if (start_[first] == start_[last + 1]) return;
-            runs_.push_back({start_[first], start_[last + 1], shift});
+            runs.push_back({start_[first], start_[last + 1], shift});
             // Beyond the next plane, only plane 0 meeting the last plane (across
             // the periodic edge) keeps the slab rule of for_each_pair.
             if (last >= after_next && !(a == 0 && first >= last_plane)) within_next_plane = false;
           });
     }
-    run_start_.back() = runs_.size();
     return within_next_plane;
   }
 
@@ -274,6 +307,8 @@ class OrderedCellList {
   std::vector<std::size_t> cell_of_sorted_;  // the cell of sorted point k
   std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
   std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
+  std::vector<std::vector<Run>> block_runs_;  // build scratch, per block of cells
+  static constexpr std::size_t cells_per_block = 4096;
   SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
 };
 

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "partc/parallel.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -107,13 +108,14 @@ class BasicParticleSet {
   void permute(const std::vector<std::size_t>& order) {
     if (order.size() != size())
       throw std::invalid_argument("partc: ParticleSet::permute: order has the wrong size");
+    // In parallel: after a rebuild the order is scattered (md's particles
+    // cross several cells a step), and the gathers wait on memory.
     for_each_array([&order](auto& a) {
-      std::remove_reference_t<decltype(a)> sorted;
-      sorted.reserve(order.size());
-      for (std::size_t from : order) {
-        assert(from < a.size());
-        sorted.push_back(a[from]);
-      }
+      std::remove_reference_t<decltype(a)> sorted(order.size());
+      parallel_for(order.size(), LoopWork::light, [&](std::size_t k) {
+        assert(order[k] < a.size());
+        sorted[k] = a[order[k]];
+      });
       a.swap(sorted);
     });
   }

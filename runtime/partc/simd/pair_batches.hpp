@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "partc/ordered_cell_list.hpp"
+#include "partc/parallel.hpp"
 #include "partc/simd/compress.hpp"
 #include "partc/simd/highway.hpp"
 #include "partc/vec.hpp"
@@ -162,10 +163,11 @@ class PairBatches {
 
   // After every cells.build: the sorted points as coordinate arrays.
   void build(const OrderedCellList<D>& cells, std::size_t n) {
-    for (int d = 0; d < D; ++d) {
+    for (int d = 0; d < D; ++d)
       x_[d].assign(n + lanes(), 0.0);  // padded: a vector load may overrun the last run
-      for (std::size_t k = 0; k < n; ++k) x_[d][k] = cells.point(k)[d];
-    }
+    parallel_for(n, LoopWork::light, [&](std::size_t k) {
+      for (int d = 0; d < D; ++d) x_[d][k] = cells.point(k)[d];
+    });
     batches_.resize(cells.pair_slabs().count());
   }
 
