@@ -205,20 +205,15 @@ class NeighbourSearch {
       });
     }
     simd::PairBatch<D>& batch = serial_batch_;
-    const auto hand_over = [&] {
-      batch.finish();
-      f(batch);
-      batch.clear();
-    };
     batch.clear();
     for_each_pair([&](std::size_t i, const auto& pairs) {
       pairs([&](std::size_t j, const Vec<D>& dx) {
         // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
         if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
       });
-      if (batch.count() >= simd::PairBatches<D>::batch_vectors * simd::lanes()) hand_over();
+      batch.hand_over_if_full(f);
     });
-    if (batch.count() > 0) hand_over();
+    batch.hand_over_rest(f);
   }
 
   // Whether such sums should take for_each_pair over per-particle queries:

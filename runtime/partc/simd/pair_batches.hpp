@@ -97,13 +97,34 @@ class PairBatch {
   HWY_INLINE void append_near(std::size_t i, const std::array<const double*, D>& x,
                               std::size_t first, std::size_t stop, const Vec<D>& qs,
                               double squared_reach) {
+    const Real d;
+    const Index du;
+    std::array<hn::Vec<Real>, D> q;
+    for (int k = 0; k < D; ++k) q[k] = hn::Set(d, qs[k]);
+    // j's lanes as first + iota + a step: GCC builds Iota(du, j) through the stack.
+    auto j_lanes = hn::Add(hn::Iota(du, 0), hn::Set(du, static_cast<std::uint64_t>(first)));
+    const auto step = hn::Set(du, static_cast<std::uint64_t>(lanes()));
+    append_near(i, first, stop, squared_reach,
+                [&](std::size_t j, std::array<hn::Vec<Real>, D>& dx) {
+                  for (int k = 0; k < D; ++k) dx[k] = hn::Sub(hn::LoadU(d, x[k] + j), q[k]);
+                  const auto loaded = j_lanes;
+                  j_lanes = hn::Add(j_lanes, step);
+                  return loaded;
+                });
+  }
+
+  // Point i's candidates first .. stop-1, a vector at a time: load(k, dx)
+  // returns the j of candidates k .. k + lanes() - 1 and sets their dx (lanes
+  // from stop on are dropped, whatever they hold); those with |dx|^2 <=
+  // squared_reach are appended, by compress-stores.
+  template <class Load>
+  HWY_INLINE void append_near(std::size_t i, std::size_t first, std::size_t stop,
+                              double squared_reach, Load&& load) {
     reserve(stop - first);
     const Real d;
     const Index du;
     const std::size_t n = lanes();
     const auto reach = hn::Set(d, squared_reach);
-    std::array<hn::Vec<Real>, D> q;
-    for (int k = 0; k < D; ++k) q[k] = hn::Set(d, qs[k]);
     const auto i_lanes = hn::Set(du, static_cast<std::uint64_t>(i));
     // Locals, not members: a store through a double* could alias them, and
     // reloading them after every store costs as much as the filter.
@@ -113,12 +134,9 @@ class PairBatch {
     std::array<double*, D> dx_out;
     for (int k = 0; k < D; ++k) dx_out[k] = dx_[k].data();
     double* r2_out = r2_.data();
-    // j's lanes as first + iota + a step: GCC builds Iota(du, j) through the stack.
-    auto j_lanes = hn::Add(hn::Iota(du, 0), hn::Set(du, static_cast<std::uint64_t>(first)));
-    const auto step = hn::Set(du, static_cast<std::uint64_t>(n));
-    for (std::size_t j = first; j < stop; j += n, j_lanes = hn::Add(j_lanes, step)) {
+    for (std::size_t j = first; j < stop; j += n) {
       std::array<hn::Vec<Real>, D> dx;
-      for (int k = 0; k < D; ++k) dx[k] = hn::Sub(hn::LoadU(d, x[k] + j), q[k]);
+      const hn::Vec<Index> j_lanes = load(j, dx);
       // Summed in dimension order, as squared_norm does: the same hits as the scalar scan.
       auto r2 = hn::Mul(dx[0], dx[0]);
       for (int k = 1; k < D; ++k) r2 = hn::Add(r2, hn::Mul(dx[k], dx[k]));
@@ -134,6 +152,23 @@ class PairBatch {
     count_ = count;
   }
 
+  // f(*this), then clear(), once the batch holds batch_vectors vectors of
+  // pairs; hand_over_rest: once it holds any. The walks call the one after
+  // each point and the other at the end of a slab, so that a point's pairs
+  // stay in one batch and a batch in one slab.
+  template <class F>
+  void hand_over_if_full(F& f) {
+    if (count_ >= batch_vectors * lanes()) hand_over(f);
+  }
+  template <class F>
+  void hand_over_rest(F& f) {
+    if (count_ > 0) hand_over(f);
+  }
+
+  // A batch is handed over once it holds this many vectors of pairs: enough
+  // to amortise the call, few enough to stay in L1 with its columns.
+  static constexpr std::size_t batch_vectors = 8;
+
   // Pads to whole vectors (and one more, for loads that overrun) with
   // harmless entries: i and j the last entry's i, dx = 0, r2 = 1.
   void finish() {
@@ -147,6 +182,13 @@ class PairBatch {
   }
 
  private:
+  template <class F>
+  void hand_over(F& f) {
+    finish();
+    f(*this);
+    clear();
+  }
+
   std::size_t count_ = 0;
   std::vector<std::uint64_t> i_, j_;
   std::array<std::vector<double>, D> dx_;
@@ -157,10 +199,6 @@ class PairBatch {
 template <int D>
 class PairBatches {
  public:
-  // A batch is handed over once it holds this many vectors of pairs: enough
-  // to amortise the call, few enough to stay in L1 with its columns.
-  static constexpr std::size_t batch_vectors = 8;
-
   // After every cells.build: the sorted points as coordinate arrays.
   void build(const OrderedCellList<D>& cells, std::size_t n) {
     for (int d = 0; d < D; ++d)
@@ -177,12 +215,6 @@ class PairBatches {
     std::array<const double*, D> x;
     for (int d = 0; d < D; ++d) x[d] = x_[d].data();
     const double squared_reach = cells.squared_reach();
-    const std::size_t full = batch_vectors * lanes();
-    const auto hand_over = [&](PairBatch<D>& batch) {
-      batch.finish();
-      f(batch);
-      batch.clear();
-    };
     cells.for_each_pair_span(
         [&](std::size_t slab, std::size_t i, std::size_t from, std::size_t until, bool self) {
           PairBatch<D>& batch = batches_[slab];
@@ -194,11 +226,9 @@ class PairBatches {
           if (!by_runs)
             cells.for_each_near_between(
                 i, from, until, [&](std::size_t j, const Vec<D>& dx) { batch.push(i, j, dx); });
-          if (batch.count() >= full) hand_over(batch);
+          batch.hand_over_if_full(f);
         },
-        [&](std::size_t slab) {
-          if (batches_[slab].count() > 0) hand_over(batches_[slab]);
-        });
+        [&](std::size_t slab) { batches_[slab].hand_over_rest(f); });
   }
 
  private:
