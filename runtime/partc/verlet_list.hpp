@@ -36,6 +36,8 @@
 // kind: one build and one reorder per position change, where a half and a full
 // VerletList would each rebuild (and reorder the set under the other). Each
 // view is bitwise the one a VerletList of that kind alone would give.
+// for_each_pair_batch gives for_each_pair's pairs packed for vector
+// arithmetic (simd/pair_batches.hpp), bit for bit, in the same slabs.
 //
 // Surprises:
 // - A rebuild may REORDER the set (as NeighbourSearch::build): indices taken
@@ -74,6 +76,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -87,6 +90,7 @@
 #include "partc/domain.hpp"
 #include "partc/neighbour_search.hpp"
 #include "partc/parallel.hpp"
+#include "partc/simd/pair_batches.hpp"
 #include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
@@ -164,6 +168,34 @@ class VerletList {
     });
   }
 
+  // for_each_pair's pairs packed for vector arithmetic (simd/pair_batches.hpp):
+  // f(batch) for batches of them, in its order, slabs and threads, with its
+  // dx bit for bit, the pair (i, i) (dx 0) first only with_self. Why: the
+  // sums' terms then run on vectors of pairs, as the cell list's do; and the
+  // lists are filtered a vector of entries at a time (filter_batch). A batch
+  // holds PairBatch::batch_vectors vectors of pairs or more, except a slab's
+  // last, and never spans two slabs.
+  template <class F>
+  void for_each_pair_batch(bool with_self, F&& f) const {
+    assert(pairs_ != VerletPairs::full);
+    batches_.resize(slabs_.count());
+    slabs_.for_each_slab([&](std::size_t a) {
+      simd::PairBatch<D>& batch = batches_[a];
+      batch.clear();
+      for (std::size_t i = slabs_.start(a); i < slabs_.start(a + 1); ++i) {
+        if (with_self) batch.push(i, i, Vec<D>::zero());
+        filter_batch(batch, i, start_[i], across_[i]);
+        batch.hand_over_if_full(f);
+      }
+      if (a + 1 == slabs_.count())
+        for (std::size_t i = slabs_.start(0); i < slabs_.start(1); ++i) {
+          filter_batch(batch, i, across_[i], start_[i + 1]);
+          batch.hand_over_if_full(f);
+        }
+      batch.hand_over_rest(f);
+    });
+  }
+
   std::size_t rebuild_count() const { return rebuild_count_; }
   // Pair walks over the lists, as NeighbourSearch::note_walk counts them.
   void note_walk() { ++walk_count_; }
@@ -221,6 +253,59 @@ class VerletList {
       }
       for (int h = 0; h < hits; ++h) g(std::size_t{hit_j[h]}, hit_dx[h]);
     }
+  }
+
+  // filter on vectors, into batch: a vector of entries loaded, the mark
+  // stripped, j's positions gathered from current_ (Vec<D> is D packed
+  // doubles), dx and its image shift computed as filter does, lane by lane
+  // (the same operations in the same order, so the same bits), then
+  // PairBatch::append_near keeps the hits. The shift is one subtraction of
+  // length, -length or +0, which is filter's dx - length * shift exactly.
+  void filter_batch(simd::PairBatch<D>& batch, std::size_t i, std::size_t first,
+                    std::size_t stop) const {
+    namespace hn = simd::hn;
+    const simd::Real d;
+    const simd::Index du;
+    const hn::RebindToSigned<simd::Real> di;
+    const hn::Rebind<std::uint32_t, simd::Real> d32;
+    const std::size_t n = simd::lanes();
+    static_assert(sizeof(Vec<D>) == D * sizeof(double), "current_ is gathered as D doubles apiece");
+    const double* const x = reinterpret_cast<const double*>(current_.data());
+    std::array<hn::Vec<simd::Real>, D> pi, length, half, below;
+    for (int k = 0; k < D; ++k) {
+      pi[k] = hn::Set(d, current_[i][k]);
+      length[k] = hn::Set(d, length_[k]);
+      half[k] = hn::Set(d, half_[k]);
+      below[k] = hn::Set(d, -half_[k]);
+    }
+    const auto mark = hn::Set(du, std::uint64_t{needs_image});
+    const std::uint32_t* entries = neighbours_.data();
+    // The last vector's entries, copied: loading them in place could read past
+    // the lists. Lanes from stop on hold i, a position to gather, and are dropped.
+    std::uint32_t tail[hn::MaxLanes(simd::Real())];
+    const auto load = [&](std::size_t k, std::array<hn::Vec<simd::Real>, D>& dx) {
+      const std::uint32_t* e = entries + k;
+      if (k + n > stop) {
+        std::fill(tail, tail + n, static_cast<std::uint32_t>(i));
+        std::copy(e, entries + stop, tail);
+        e = tail;
+      }
+      const auto entry = hn::PromoteTo(du, hn::LoadU(d32, e));
+      const auto j = hn::AndNot(mark, entry);
+      const auto marked = hn::RebindMask(d, hn::Eq(hn::And(entry, mark), mark));
+      auto at = hn::BitCast(di, j);  // j * D: where j's coordinates start
+      for (int c = 1; c < D; ++c) at = hn::Add(at, hn::BitCast(di, j));
+      for (int c = 0; c < D; ++c) {
+        const auto delta = hn::Sub(hn::GatherIndex(d, x + c, at), pi[c]);
+        const auto up = hn::And(marked, hn::Gt(delta, half[c]));
+        const auto down = hn::And(marked, hn::Lt(delta, below[c]));
+        const auto shift =
+            hn::IfThenElse(up, length[c], hn::IfThenElseZero(down, hn::Neg(length[c])));
+        dx[c] = hn::Sub(delta, shift);
+      }
+      return j;
+    };
+    batch.append_near(i, first, stop, squared_radius_, load);
   }
 
   // Blocks of particles for the parallel passes: each block's result depends on
@@ -431,6 +516,7 @@ class VerletList {
   std::vector<char> moved_;                              // update scratch: per block
   SlabSchedule slabs_;               // half: the parallel schedule of for_each_pair
   std::vector<std::size_t> across_;  // half: i's pairs across the periodic edge: across_[i] ..
+  mutable std::vector<simd::PairBatch<D>> batches_;  // for_each_pair_batch's: one per slab
 };
 
 }  // namespace partc

@@ -1,8 +1,9 @@
-// The packed pair walk (simd/pair_batches.hpp) against the scalar one it
-// packs (OrderedCellList::for_each_pair, itself tested against brute force in
-// test_search.cpp): every point's pairs in the same order with the same dx
-// bit for bit; padding as documented; the compress of every mask against the
-// obvious loop. Built twice, with the default flags and with
+// The packed pair walks (simd/pair_batches.hpp, VerletList::for_each_pair_batch)
+// against the scalar ones they pack (OrderedCellList::for_each_pair, itself
+// tested against brute force in test_search.cpp; VerletList::for_each_pair,
+// in test_verlet_list.cpp): every point's pairs in the same order with the
+// same dx bit for bit; padding as documented; the compress of every mask
+// against the obvious loop. Built twice, with the default flags and with
 // -march=native, so that both the narrowest and the widest vectors of the
 // machine are covered (the test prints the lane count).
 #include <algorithm>
@@ -17,8 +18,10 @@
 #include "partc/domain.hpp"
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
+#include "partc/particle_set.hpp"
 #include "partc/simd/compress.hpp"
 #include "partc/simd/pair_batches.hpp"
+#include "partc/verlet_list.hpp"
 
 using partc::Domain;
 using partc::Vec;
@@ -98,6 +101,97 @@ void check_walks(const Domain<D>& domain, double radius, const std::vector<Vec<D
   CHECK(pairs > p.size() / 2);  // not a vacuous comparison
 }
 
+// A walk's pairs by i, as (j, dx).
+template <int D>
+using PairsByI = std::vector<std::vector<std::pair<std::size_t, Vec<D>>>>;
+
+// Points whose pairs differ between two walks (j or dx's bits, NaN and -0
+// included), and the pairs compared.
+template <int D>
+std::pair<std::size_t, std::size_t> compare_walks(const PairsByI<D>& scalar,
+                                                  const PairsByI<D>& packed) {
+  std::size_t differing = 0, pairs = 0;
+  for (std::size_t i = 0; i < scalar.size(); ++i) {
+    bool same = packed[i].size() == scalar[i].size();
+    for (std::size_t k = 0; same && k < scalar[i].size(); ++k)
+      same = packed[i][k].first == scalar[i][k].first &&
+             std::memcmp(&packed[i][k].second, &scalar[i][k].second, sizeof(Vec<D>)) == 0;
+    differing += !same;
+    pairs += scalar[i].size();
+  }
+  return {differing, pairs};
+}
+
+// VerletList's packed walk against its for_each_pair, on the lists as they
+// are: the same pairs per i, in order, bit for bit; batches as documented
+// (padding; full but for one per slab at most; a point's pairs in one batch,
+// or two for slab 0's pairs across the edge). Returns the pairs compared.
+template <int D>
+std::size_t check_verlet_walks(const partc::VerletList<D>& list, std::size_t n, bool with_self) {
+  PairsByI<D> scalar(n), packed(n);
+  list.for_each_pair([&](std::size_t i, const auto& pairs_of_i) {
+    pairs_of_i([&](std::size_t j, const Vec<D>& dx) {
+      if (j != i || with_self) scalar[i].push_back({j, dx});
+    });
+  });
+  std::size_t bad_padding = 0, short_batches = 0, batches = 0;
+  std::vector<int> batches_of(n, 0);
+  list.for_each_pair_batch(with_self, [&](simd::PairBatch<D>& b) {
+    ++batches;  // calls running at once never share a point, but may share this
+    REQUIRE(b.count() > 0);
+    short_batches += b.count() < simd::PairBatch<D>::batch_vectors * simd::lanes();
+    const std::size_t last = b.i()[b.count() - 1];
+    for (std::size_t k = 0; k < b.count(); ++k) {
+      const std::size_t i = b.i()[k];
+      if (k == 0 || b.i()[k - 1] != i) ++batches_of[i];
+      Vec<D> dx;
+      for (int d = 0; d < D; ++d) dx[d] = b.dx(d)[k];
+      packed[i].push_back({static_cast<std::size_t>(b.j()[k]), dx});
+    }
+    for (std::size_t k = b.count(); k < b.padded(); ++k) {
+      bad_padding += b.i()[k] != last || b.j()[k] != last || b.r2()[k] != 1.0;
+      for (int d = 0; d < D; ++d) bad_padding += b.dx(d)[k] != 0.0;
+    }
+  });
+  CHECK(bad_padding == 0);
+  CHECK(short_batches <= list.slab_count());
+  if (n > 0) CHECK(*std::max_element(batches_of.begin(), batches_of.end()) <= 2);
+  const auto [differing, pairs] = compare_walks(scalar, packed);
+  CHECK(differing == 0);
+  return pairs;
+}
+
+// Steps of random motion of at most `move` per coordinate, wrapped (so
+// particles cross periodic edges), each followed by update and both walks;
+// some steps must keep the lists (moves measured without a rebuild).
+template <int D>
+void check_verlet_steps(const Domain<D>& domain, double radius, double skin, std::size_t n,
+                        double move, std::uint64_t seed) {
+  const std::vector<Vec<D>> start = points<D>(n, false, false, seed);
+  partc::ParticleSet<D> set;
+  for (const Vec<D>& p : start) set.push_back(domain.wrap(p));
+  partc::VerletList<D> list(skin, partc::VerletPairs::half);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> step(-move, move);
+  std::size_t kept = 0, crossings = 0, pairs = 0;
+  for (int s = 0; s < 8; ++s) {
+    INFO("step " << s);
+    kept += !list.update(domain, radius, set);
+    for (const bool with_self : {false, true}) pairs += check_verlet_walks(list, n, with_self);
+    for (auto& p : set.positions()) {
+      const Vec<D> before = p;
+      for (int k = 0; k < D; ++k) p[k] += step(rng);
+      p = domain.wrap(p);
+      for (int k = 0; k < D; ++k) crossings += std::abs(p[k] - before[k]) > 2 * move;
+    }
+  }
+  CHECK(kept >= 2);
+  CHECK(pairs > 8 * n);  // not a vacuous comparison
+  INFO("D = " << D);
+  // In 1D (2000 points) a step carries few across: no crossing is asked of it.
+  if (domain.periodic[0] && D > 1) CHECK(crossings > 0);
+}
+
 template <int D>
 Domain<D> unit_box(bool periodic) {
   Domain<D> domain;
@@ -159,6 +253,39 @@ TEST_CASE("the packed walk gives the scalar walk's pairs, bit for bit", "[simd]"
   SECTION("two threads") {
     partc::with_threads(2, [] {
       check_walks<2>(unit_box<2>(true), 0.02, points<2>(20000, false, false, 6), false);
+    });
+  }
+}
+
+TEST_CASE("the packed Verlet walk gives for_each_pair's pairs, bit for bit", "[simd][verlet]") {
+  INFO("lanes of double: " << simd::lanes());
+  for (const bool periodic : {true, false}) {
+    INFO("periodic " << periodic);
+    check_verlet_steps<2>(unit_box<2>(periodic), 0.05, 0.02, 3000, 0.003, 11);
+    check_verlet_steps<3>(unit_box<3>(periodic), 0.1, 0.03, 3000, 0.004, 12);
+    check_verlet_steps<1>(unit_box<1>(periodic), 0.002, 0.001, 2000, 0.0001, 13);
+  }
+  SECTION("a small periodic box: every entry needs the image shift") {
+    check_verlet_steps<2>(unit_box<2>(true), 0.3, 0.25, 300, 0.02, 14);
+    check_verlet_steps<3>(unit_box<3>(true), 0.4, 0.2, 300, 0.02, 15);
+  }
+  SECTION("NaN positions have no pairs") {
+    const Domain<2> domain = unit_box<2>(true);
+    partc::ParticleSet<2> set;
+    for (const Vec<2>& p : points<2>(3000, false, true, 16)) set.push_back(p);
+    partc::VerletList<2> list(0.02, partc::VerletPairs::half);
+    list.update(domain, 0.05, set);
+    for (const bool with_self : {false, true}) check_verlet_walks(list, set.size(), with_self);
+  }
+  SECTION("two threads, several slabs") {
+    partc::with_threads(2, [] {
+      const Domain<2> domain = unit_box<2>(true);
+      partc::ParticleSet<2> set;
+      for (const Vec<2>& p : points<2>(20000, false, false, 17)) set.push_back(p);
+      partc::VerletList<2> list(0.005, partc::VerletPairs::half);
+      list.update(domain, 0.02, set);
+      CHECK(list.slab_count() >= 4);
+      for (const bool with_self : {false, true}) check_verlet_walks(list, set.size(), with_self);
     });
   }
 }
