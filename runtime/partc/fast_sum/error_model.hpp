@@ -51,8 +51,9 @@
 //   0.22 of its standard deviation, and its multiquadric sums are 0.02 of
 //   their expected square, so the measured error is 2 to 4x the prediction
 //   (six other draws: sums 0.2 to 2.7 of their expected square, the error
-//   itself as predicted). The sample check (accuracy.hpp) measures the
-//   realised error.
+//   itself as predicted). A plan given its charges measures how far they
+//   cancel and scales the prediction by it (cancellation.hpp); the sample
+//   check (accuracy.hpp) measures the realised error.
 // - the field (the vector kernel) uses the potential's prediction.
 #pragma once
 

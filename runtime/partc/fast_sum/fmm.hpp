@@ -6,6 +6,7 @@
 //   partc::fast_sum::Fmm<3, Kernel> fmm(sources, targets, kernel, {1e-6});
 //   fmm.potential(q.data(), phi.data());  // as often as wanted, for new charges
 //   fmm.field(q.data(), e.data());        // sum_j k(r) (x_j - x_i) q[j]
+//   Fmm<3, Kernel> for_q(sources, targets, kernel, {1e-6}, q.data());  // planned for q
 //
 // The plan (the constructor) builds a tree over the sources and one over the
 // targets (fmm_tree.hpp), finds how their boxes interact
@@ -27,6 +28,15 @@
 // 4 p^D k flops instead of 2 p^(2D), k ~ p^2 / 2 in 3D; the prediction the
 // plan reports and meets is the interpolation's times 1 + compression_share.
 //
+// Charges known when planning: the model predicts the error relative to
+// the result's size on average over charges, and charges that cancel (their
+// total near 0, under a smooth kernel) give a smaller result and a larger
+// relative error; given the charges, the plan measures how far they cancel
+// (cancellation.hpp, a direct sum at 128 targets) and multiplies its
+// predictions by that over the typical cancellation the model's calibration
+// already allows for, so the order meets tol for them. A plan evaluated for
+// charges it is not given (a solve's products) is planned without them.
+//
 // Order and leaf size: the cheapest order whose predicted error is <= tol
 // (leaf_size_for_order, cost_model.hpp, balances the near field against M2L); the tree
 // depends on the leaf size and the prediction on the tree, so the choice is
@@ -35,6 +45,8 @@
 // Surprises:
 // - results are bitwise the same for any number of threads: every box and
 //   point accumulates its contributions in one fixed order.
+// - a plan given charges predicts for those charges: others that cancel
+//   more have a larger error than predicted, as with a plan given none.
 // - the order is chosen for the sum the plan serves (Accuracy::field): a
 //   plan for potentials can give fields too, at the potential's order, and
 //   their error is then not what tol asked.
@@ -53,6 +65,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "partc/fast_sum/cancellation.hpp"
 #include "partc/fast_sum/chebyshev.hpp"
 #include "partc/fast_sum/cost_model.hpp"
 #include "partc/fast_sum/direct_sum.hpp"
@@ -81,6 +94,7 @@ struct FmmStats {
   double near_point_pairs = 0;  // point pairs summed directly
   std::size_t operators = 0;    // M2L matrices stored
   double operator_bytes = 0;
+  double cancellation = 1;  // cancellation.hpp's, for the charges planned for (1: none given)
   double plan_seconds = 0;
 };
 
@@ -89,11 +103,17 @@ class Fmm {
   static_assert(D >= 1 && D <= 3, "fast sums are for 1 to 3 dimensions");
 
  public:
+  // charges: those the plan is for (indexed like sources), if known; then
+  // the predictions are for them (see the head comment).
   template <class T>
   Fmm(const std::vector<Vec<D, T>>& sources, const std::vector<Vec<D, T>>& targets, Kernel kernel,
-      Accuracy accuracy)
+      Accuracy accuracy, const double* charges = nullptr)
       : kernel_(std::move(kernel)), basis_(2), symmetries_(basis_) {
     const auto start = std::chrono::steady_clock::now();
+    if (charges)
+      stats_.cancellation =
+          measure_cancellation(sources, targets, kernel_, charges, accuracy.field);
+    if (charges) cancellation_factor_ = stats_.cancellation / typical_cancellation;
     const Cube<D> cube = bounding_cube(sources, targets);
     auto plan = [&](int p) {
       order_ = p;
@@ -108,7 +128,7 @@ class Fmm {
       interactions_ = find_interactions(target_tree_, source_tree_, symmetries_, nodes());
       predicted_ =
           predict_errors<D>(kernel_, target_tree_, source_tree_, interactions_, accuracy.field, p);
-      for (double& e : predicted_) e *= 1 + compression_share;
+      for (double& e : predicted_) e *= (1 + compression_share) * cancellation_factor_;
     };
     auto cheapest = [&] {
       for (int p = 2; p < max_order(D); ++p)
@@ -177,11 +197,13 @@ class Fmm {
   // Each group's operator, compressed (low_rank.hpp) where that pays within
   // one evaluation (cost_model.hpp): its dropped singular values, relative to
   // the largest, are below compression_share of the interpolation's
-  // predicted error.
+  // predicted error for charges not known: the operators' own, which the
+  // charges' cancellation magnifies alike.
   void build_operators(bool field) {
     operators_.assign(interactions_.m2l.size(), {});
     compressed_.assign(interactions_.m2l.size(), {});
-    const double eps = compression_share / (1 + compression_share) * predicted_error();
+    const double eps =
+        compression_share / (1 + compression_share) * predicted_error() / cancellation_factor_;
     parallel_for(operators_.size(), LoopWork::blocks, [&](std::size_t g) {
       const M2lGroup& group = interactions_.m2l[g];
       operators_[g] =
@@ -436,6 +458,7 @@ class Fmm {
   Tree<D> source_tree_, target_tree_;
   Interactions interactions_;
   std::vector<double> predicted_;                // by order
+  double cancellation_factor_ = 1;               // cancellation / typical; 1 without charges
   std::vector<std::vector<double>> operators_;   // one per M2L group, empty if compressed
   std::vector<LowRank> compressed_;              // one per M2L group, rank 0 if not
   std::array<std::vector<double>, 2> transfer_;  // child_transfer(0), child_transfer(1)
