@@ -156,6 +156,64 @@ TEST_CASE("a fast sum meets a tight tol at high order: 1/r at tol 1e-9", "[fast_
   CHECK(error >= tol / 30);
 }
 
+// Charges whose moments up to the second (total, dipole, quadrupole) are 0
+// make a smooth kernel's sum cancel (cancellation.hpp): the result is a
+// small part of what the error model expects of charges in [-1, 1], and a
+// plan made without the charges misses tol. Given the charges, the plan
+// measures the cancellation and raises the order until tol is met.
+TEST_CASE("a plan given charges that cancel meets tol under a smooth kernel", "[fast_sum]") {
+  const auto x = uniform_points<3>(4000, 61);
+  auto q = charges(x.size(), 62);
+  // q minus its least-squares fit by a polynomial of degree 2 (normal
+  // equations, well conditioned at this size; Gauss-Jordan).
+  constexpr int terms = 10;
+  auto monomials = [](const Vec<3>& p, double* m) {
+    const double at[terms] = {1,           p[0],        p[1],        p[2],        p[0] * p[0],
+                              p[1] * p[1], p[2] * p[2], p[0] * p[1], p[0] * p[2], p[1] * p[2]};
+    std::copy(at, at + terms, m);
+  };
+  double normal[terms][terms + 1] = {};
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    double m[terms];
+    monomials(x[j], m);
+    for (int a = 0; a < terms; ++a) {
+      for (int b = 0; b < terms; ++b) normal[a][b] += m[a] * m[b];
+      normal[a][terms] += m[a] * q[j];
+    }
+  }
+  for (int a = 0; a < terms; ++a)
+    for (int b = 0; b < terms; ++b) {
+      if (b == a) continue;
+      const double f = normal[b][a] / normal[a][a];
+      for (int c = 0; c <= terms; ++c) normal[b][c] -= f * normal[a][c];
+    }
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    double m[terms];
+    monomials(x[j], m);
+    for (int a = 0; a < terms; ++a) q[j] -= normal[a][terms] / normal[a][a] * m[a];
+  }
+  const Multiquadric mq{3};
+  const double tol = 1e-5;
+  const auto exact = direct_potential<3>(x, x, mq, q);
+  const Fmm<3, Multiquadric> blind(x, x, mq, Accuracy{tol, 0});
+  const Fmm<3, Multiquadric> aware(x, x, mq, Accuracy{tol, 0}, q.data());
+  std::vector<double> phi(x.size());
+  blind.potential(q.data(), phi.data());
+  const double blind_error = relative_l2(phi, exact);
+  aware.potential(q.data(), phi.data());
+  const double error = relative_l2(phi, exact);
+  INFO("without the charges: order "
+       << blind.order() << ", predicted " << blind.predicted_error() << ", measured " << blind_error
+       << "; with them: order " << aware.order() << ", cancellation " << aware.stats().cancellation
+       << ", predicted " << aware.predicted_error() << ", measured " << error);
+  CHECK(blind.stats().cancellation == 1.0);
+  CHECK(blind_error > tol);  // the case is one the plan without charges misses
+  CHECK(aware.stats().cancellation > 3);
+  CHECK(error <= tol);
+  CHECK(error <= aware.predicted_error());
+  CHECK(error >= tol / 30);
+}
+
 // The compressed M2L operator (low_rank.hpp) against the full one: on random
 // vectors, the difference stays below eps times the largest singular value
 // (which a random vector's image bounds from below), at a rank well below
