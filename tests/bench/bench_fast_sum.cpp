@@ -3,13 +3,16 @@
 // (e = 1, 3) and a Gaussian exp(-(e r)^2) (e = 3), uniform points in the unit
 // cube and a Plummer sphere, in 3D, over a range of tol: the order chosen,
 // the measured error (relative L2 and max, over 500 sampled targets, against
-// the direct sum; charges uniform in [-1, 1]), the plan and evaluation times
+// the direct sum; charges uniform in [-1, 1]), the charges' cancellation the
+// plan measured (cancellation.hpp), the plan and evaluation times
 // (medians of --repeats), the direct sum's time, and the speed-up.
 //
 //   bench_fast_sum [--n 10000,100000] [--tols 1e-2,...] [--kernels coulomb,mq1,mq3,gauss3]
 //                  [--dists uniform,plummer] [--field] [--threads 1] [--repeats 3] [--csv FILE]
-//                  [--orders 2,4,6]
+//                  [--orders 2,4,6] [--blind]
 //
+// The plans are given the charges, as a model's fast sums are; --blind plans
+// without them, as a matrix-free solve's products are (cancellation 1).
 // --orders plans at the given orders instead of from tol (the tol column
 // then shows 0): the comparison of the error model's prediction (column
 // pred) with the measured error that error_model.hpp's calibration rests on.
@@ -86,7 +89,7 @@ struct Options {
   std::vector<std::string> kernels{"coulomb", "mq1", "mq3", "gauss3"};
   std::vector<std::string> dists{"uniform", "plummer"};
   std::vector<double> orders;  // fixed orders instead of tols, if any
-  bool field = false;
+  bool field = false, blind = false;
   int threads = 1, repeats = 3;
   std::string csv;
 };
@@ -121,7 +124,7 @@ void run(const Options& o, const std::string& name, Kernel kernel, const std::st
   for (double order : o.orders) accuracies.push_back({0, int(order), o.field});
   for (const Accuracy accuracy : accuracies) {
     const double tol = accuracy.tol;
-    double predicted = 0;
+    double predicted = 0, cancellation = 1;
     std::vector<double> plans, evals;
     partc::fast_sum::MeasuredError error;
     int order = 0;
@@ -129,11 +132,14 @@ void run(const Options& o, const std::string& name, Kernel kernel, const std::st
     partc::with_threads(o.threads, [&] {
       for (int r = 0; r < o.repeats; ++r) {
         std::unique_ptr<Fmm<3, Kernel>> fmm;
-        plans.push_back(bench::seconds(
-            [&] { fmm = std::make_unique<Fmm<3, Kernel>>(x, x, kernel, accuracy); }));
+        plans.push_back(bench::seconds([&] {
+          fmm = std::make_unique<Fmm<3, Kernel>>(x, x, kernel, accuracy,
+                                                 o.blind ? nullptr : q.data());
+        }));
         order = fmm->order();
         predicted = fmm->predicted_error();
         leaf = fmm->stats().leaf_size;
+        cancellation = fmm->stats().cancellation;
         if (o.field) {
           std::vector<Vec<3>> e(n);
           evals.push_back(bench::seconds([&] { fmm->field(q.data(), e.data()); }));
@@ -149,15 +155,17 @@ void run(const Options& o, const std::string& name, Kernel kernel, const std::st
     });
     const double plan = bench::median(plans), eval = bench::median(evals);
     std::printf(
-        "%-8s %-8s %8zu %7.0e %5d %6zu %9.2e %9.2e %9.2e %9.3f %9.3f %10.2f %8.1f %8.1f %8.2f\n",
+        "%-8s %-8s %8zu %7.0e %5d %6zu %9.2e %9.2e %9.2e %7.2f %9.3f %9.3f %10.2f %8.1f %8.1f "
+        "%8.2f\n",
         name.c_str(), dist.c_str(), n, tol, order, leaf, predicted, error.rel_l2, error.max_rel,
-        plan, eval, direct, direct / eval, direct / (plan + eval),
+        cancellation, plan, eval, direct, direct / eval, direct / (plan + eval),
         (plan + eval) * o.threads / double(n) * 1e6);
     std::fflush(stdout);
     if (csv)
       csv << name << ',' << dist << ',' << n << ',' << tol << ',' << order << ',' << leaf << ','
           << predicted << ',' << error.rel_l2 << ',' << error.max_rel << ',' << plan << ',' << eval
-          << ',' << direct << ',' << (o.field ? "field" : "potential") << '\n';
+          << ',' << direct << ',' << (o.field ? "field" : "potential") << ',' << cancellation
+          << '\n';
   }
 }
 
@@ -165,12 +173,13 @@ void run(const Options& o, const std::string& name, Kernel kernel, const std::st
 
 int main(int argc, char** argv) {
   Options o;
-  for (int i = 1; i + 1 < argc || (i < argc && std::string(argv[i]) == "--field"); ++i) {
+  for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--field") {
-      o.field = true;
+    if (flag == "--field" || flag == "--blind") {
+      (flag == "--field" ? o.field : o.blind) = true;
       continue;
     }
+    if (i + 1 == argc) break;
     const std::string value = argv[++i];
     if (flag == "--n")
       o.ns = numbers(value);
@@ -197,13 +206,13 @@ int main(int argc, char** argv) {
   if (!o.csv.empty()) {
     csv.open(o.csv);
     csv << "kernel,distribution,n,tol,order,leaf_size,predicted,rel_l2,max_rel,plan_s,eval_s,"
-           "direct_s,sum\n";
+           "direct_s,sum,cancellation\n";
   }
-  std::printf("%s on %d thread(s), medians of %d\n", o.field ? "field" : "potential", o.threads,
-              o.repeats);
-  std::printf("%-8s %-8s %8s %7s %5s %6s %9s %9s %9s %9s %9s %10s %8s %8s %8s\n", "kernel", "dist",
-              "N", "tol", "order", "leaf", "pred", "rel_L2", "max_rel", "plan_s", "eval_s",
-              "direct_s", "x_eval", "x_total", "us/pt");
+  std::printf("%s on %d thread(s), medians of %d%s\n", o.field ? "field" : "potential", o.threads,
+              o.repeats, o.blind ? ", planned without the charges" : "");
+  std::printf("%-8s %-8s %8s %7s %5s %6s %9s %9s %9s %7s %9s %9s %10s %8s %8s %8s\n", "kernel",
+              "dist", "N", "tol", "order", "leaf", "pred", "rel_L2", "max_rel", "cancel", "plan_s",
+              "eval_s", "direct_s", "x_eval", "x_total", "us/pt");
   for (double n : o.ns)
     for (const auto& dist : o.dists)
       for (const auto& k : o.kernels) {
