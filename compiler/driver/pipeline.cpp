@@ -64,9 +64,9 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   c.facts.observed_steps = find_observed_steps(c.model);
   // Consecutive statements one walk can serve: needs the plan and symmetry,
   // and which statements run only on observed steps (a pass runs whole or not).
-  c.facts.fusion = fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry,
-                                   c.facts.searches, c.facts.observed_steps, file,
-                                   passes.fuse_statements);
+  c.facts.fusion =
+      fuse_statements(c.model, c.facts.neighbourhoods, c.facts.symmetry, c.facts.searches,
+                      c.facts.observed_steps, file, passes.fuse_statements);
   for (const auto& [id, fact] : c.coincident)
     if (fact.warning) c.warnings.push_back(*fact.warning);
 }

@@ -26,7 +26,7 @@ struct Compilation {
   std::vector<ir::FoldedTerm> folded;  // terms a constant 0 removed
   std::vector<ir::DroppedDeclaration> unread;  // functions and consts only folded code read
   ir::SingleUseReport single_use;  // variables computed in their reader, not stored
-  CoincidenceReport coincident;  // for warnings, --explain and vector_terms
+  CoincidenceReport coincident;    // for warnings, --explain and vector_terms
   std::vector<Diagnostic> warnings;
 };
 

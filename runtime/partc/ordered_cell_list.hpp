@@ -48,9 +48,8 @@ class OrderedCellList {
     // Each point's cell and the sorted copy in parallel; the counting sort
     // between them serially (its result, the stable order, is unique anyway).
     cell_of_point_.resize(n);
-    parallel_for(n, LoopWork::light, [&](std::size_t i) {
-      cell_of_point_[i] = grid_.cell_of(domain.wrap(points[i]));
-    });
+    parallel_for(n, LoopWork::light,
+                 [&](std::size_t i) { cell_of_point_[i] = grid_.cell_of(domain.wrap(points[i])); });
     start_.assign(grid_.cell_count() + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_point_[i]];
     // Inclusive prefix sums make start_[c] the end of cell c (and start_.back() = n);
