@@ -1,7 +1,8 @@
 // Decides, per sum taken each pair once (Newton's third law), whether its
 // pairs are packed and its term computed on vectors of pairs: runs after
 // symmetry, whose pair walk the packing serves (a sum evaluated both ways
-// keeps per-particle queries).
+// keeps per-particle queries). The pairs come from the search's walk or from
+// half Verlet lists alike (both have for_each_pair_batch).
 //
 // A term has a vector form when every node of its condition and body does:
 // reals and vecs (a vec is one vector per component), literals and params,
@@ -166,12 +167,7 @@ VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport&
     for (const Stage& stage : model.stages)
       for (const Statement& st : stage.statements)
         for (const Accumulate* acc : accumulations_in(st))
-          if (acc->id == id)
-            report[id] = st.schedule.skin
-                             ? VectorTermFact{false,
-                                              "scalar: Verlet lists' pairs are walked a "
-                                              "pair at a time"}
-                             : judge(model, *acc, excludes_coincident(coincident, id));
+          if (acc->id == id) report[id] = judge(model, *acc, excludes_coincident(coincident, id));
   }
   return report;
 }

@@ -404,7 +404,11 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (l.once) {
       loop(l, st, names);
     } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {
-      pair_pass(l, names, count, locals, lists_.at(&st) + "->for_each_pair", k.name);
+      const std::string walk = lists_.at(&st) + "->for_each_pair";
+      if (vector_terms(l))
+        batch_pass(l, names, count, locals, walk + "_batch", k.name);
+      else
+        pair_pass(l, names, count, locals, walk, k.name);
       for (const Accumulate* acc : l.members)
         names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
@@ -414,7 +418,7 @@ void ModelEmitter::kernel(const Kernel& k) {
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
       linef("if ({}) {{", pairs_once);
       if (vector_terms(l))
-        batch_pass(l, names, count, locals, search, k.name);
+        batch_pass(l, names, count, locals, search + ".for_each_pair_batch", k.name);
       else
         pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
       line("}");

@@ -266,7 +266,7 @@ class ModelEmitter {
   // whose every sum has a vector form (vector_terms).
   bool vector_terms(const Loop& l) const;
   void batch_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-                  NameTable& locals, const std::string& search, const std::string& kernel);
+                  NameTable& locals, const std::string& walk, const std::string& kernel);
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
   // codegen/fast_sum.cpp: a dense sum by the fast multipole method, before the
   // particle loop; its result read as names.accumulators[acc.id].

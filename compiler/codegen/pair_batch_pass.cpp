@@ -1,6 +1,6 @@
 // Emits the pair walk of sums taken each pair once whose terms have a vector
-// form (analysis/vector_terms.cpp): the search packs the pairs into batches
-// (NeighbourSearch::for_each_pair_batch), a vector loop computes each sum's
+// form (analysis/vector_terms.cpp): the search or the half Verlet lists pack
+// the pairs into batches (for_each_pair_batch), a vector loop computes each sum's
 // term for a vector of pairs at a time (codegen/simd_term.cpp) into columns,
 // and a scalar loop then gives each pair's term to i and +-term to j, into
 // the same per-particle member vectors the scalar walk (pair_pass) fills.
@@ -22,7 +22,7 @@ bool ModelEmitter::vector_terms(const Loop& l) const {
 }
 
 void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-                              NameTable& locals, const std::string& search,
+                              NameTable& locals, const std::string& walk,
                               const std::string& kernel) {
   const std::string i = names.labels[0];
   const std::string j = names.labels[l.members.front()->label];
@@ -36,7 +36,7 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
   line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
   line("// together (partc/simd), then given to i and j.");
   if (!self_pair) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
-  linef("{}.for_each_pair_batch({}, [&](partc::simd::PairBatch<{}>& {}) {{", search, self_pair,
+  linef("{}({}, [&](partc::simd::PairBatch<{}>& {}) {{", walk, self_pair,
         m_.dim, batch);
   line("namespace hn = partc::simd::hn;");
   linef("const partc::simd::Real {};", tag);
