@@ -23,11 +23,13 @@
 //
 // LAMMPS (optional): each argument is a LAMMPS log of this workload
 // (.ci/bench writes the inputs and runs lmp). Logs are grouped by their
-// neigh_modify line, i.e. by rebuild policy: in.melt's "every 20 delay 0 check
-// no" rebuilds every 20 steps unconditionally (5 times in 100 steps, without
-// checking that no pair was missed), "every 1 delay 0 check yes" rebuilds when
-// some atom moved more than half the skin: partc's policy. Per policy: the
-// median loop time, and the first log's thermo output and build count.
+// neigh_modify and pair_style lines, i.e. by rebuild policy and pair kernel:
+// in.melt's "every 20 delay 0 check no" rebuilds every 20 steps
+// unconditionally (5 times in 100 steps, without checking that no pair was
+// missed), "every 1 delay 0 check yes" rebuilds when some atom moved more than
+// half the skin: partc's policy; lj/cut/opt is the OPT package's kernel (what
+// -sf opt picks), LAMMPS's fastest serial one. Per group: the median loop
+// time, and the first log's thermo output and build count.
 //
 // Usage: bench_lj [LAMMPS_LOG]...
 #include <algorithm>
@@ -140,7 +142,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     auto same = std::find_if(lammps.begin(), lammps.end(), [&](const LammpsPolicy& p) {
-      return p.first.neigh_modify == log->neigh_modify;
+      return p.first.neigh_modify == log->neigh_modify && p.first.pair_style == log->pair_style;
     });
     if (same == lammps.end()) same = lammps.insert(lammps.end(), {*log, {}});
     same->loop_seconds.push_back(log->loop_seconds);
@@ -247,8 +249,9 @@ int main(int argc, char** argv) {
       "(a) partc: mean of steps 2-100 without a rebuild; LAMMPS: its Pair time / 100 steps\n"
       "(b) partc: mean of the steps with a rebuild - (a); LAMMPS: its Neigh time / builds\n");
   for (std::size_t k = 0; k < lammps.size(); ++k)
-    std::printf("LAMMPS %zu: neigh_modify %s (%zu runs)\n", k + 1,
-                lammps[k].first.neigh_modify.c_str(), lammps[k].loop_seconds.size());
+    std::printf("LAMMPS %zu: pair_style %s, neigh_modify %s (%zu runs)\n", k + 1,
+                lammps[k].first.pair_style.c_str(), lammps[k].first.neigh_modify.c_str(),
+                lammps[k].loop_seconds.size());
   if (lammps.empty()) std::printf("(no LAMMPS logs given: no LAMMPS columns)\n");
 
   std::printf("\npartc rebuilt its lists in steps %s; step 1 took %.2f ms\n",
