@@ -60,6 +60,10 @@ class PairBatch {
   const double* dx(int d) const { return dx_[d].data(); }
   const double* r2() const { return r2_.data(); }
   double* column(std::size_t c) { return columns_[c].data(); }
+  // The slab of the walk whose pairs the batch holds (0 for a serial walk):
+  // one slab's batches are handed over on one thread, in the walk's order.
+  std::size_t slab() const { return slab_; }
+  void set_slab(std::size_t a) { slab_ = a; }
   void columns(std::size_t n) {
     if (columns_.size() < n) columns_.resize(n);
     for (auto& column : columns_) column.resize(j_.size());
@@ -190,6 +194,7 @@ class PairBatch {
   }
 
   std::size_t count_ = 0;
+  std::size_t slab_ = 0;
   std::vector<std::uint64_t> i_, j_;
   std::array<std::vector<double>, D> dx_;
   std::vector<double> r2_;
@@ -207,6 +212,7 @@ class PairBatches {
       for (int d = 0; d < D; ++d) x_[d][k] = cells.point(k)[d];
     });
     batches_.resize(cells.pair_slabs().count());
+    for (std::size_t a = 0; a < batches_.size(); ++a) batches_[a].set_slab(a);
   }
 
   // f(batch) for the pairs, as described at the top.
