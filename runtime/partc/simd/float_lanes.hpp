@@ -27,32 +27,30 @@ namespace partc::simd {
 template <class D>
 using IndexLanes = hn::Vec<hn::RebindToSigned<D>>;
 
+// Two vectors of doubles as one of floats, each rounded to the nearest
+// float (low: the first pairs).
+HWY_INLINE hn::Vec<Float> demote(hn::Vec<Real> low, hn::Vec<Real> high) {
+#if HWY_TARGET == HWY_SCALAR
+  (void)high;  // one lane: a vector of floats covers one pair, as one of doubles
+  return hn::DemoteTo(Float(), low);
+#else
+  const hn::Rebind<float, Real> half;
+  return hn::Combine(Float(), hn::DemoteTo(half, high), hn::DemoteTo(half, low));
+#endif
+}
+
 // Lanes(Float()) doubles from p, each rounded to the nearest float.
 HWY_INLINE hn::Vec<Float> load_demoted(const double* p) {
   const Real d;
-#if HWY_TARGET == HWY_SCALAR
-  return hn::DemoteTo(Float(), hn::LoadU(d, p));
-#else
-  const hn::Rebind<float, Real> half;
-  return hn::Combine(Float(), hn::DemoteTo(half, hn::LoadU(d, p + hn::Lanes(d))),
-                     hn::DemoteTo(half, hn::LoadU(d, p)));
-#endif
+  return demote(hn::LoadU(d, p), hn::LoadU(d, p + hn::Lanes(d)));
 }
 
 // The mask of a vector of floats from those of the two vectors of doubles
 // it covers (low: its first pairs): conditions are decided in double.
 HWY_INLINE hn::Mask<Float> demote_mask(hn::Mask<Real> low, hn::Mask<Real> high) {
-  const Real d;
-  const auto one = hn::Set(d, 1.0);
-#if HWY_TARGET == HWY_SCALAR
-  (void)high;  // one lane: a vector of floats covers one pair, as one of doubles
-  return hn::Ne(hn::DemoteTo(Float(), hn::IfThenElseZero(low, one)), hn::Zero(Float()));
-#else
-  const hn::Rebind<float, Real> half;
-  const auto ones = hn::Combine(Float(), hn::DemoteTo(half, hn::IfThenElseZero(high, one)),
-                                hn::DemoteTo(half, hn::IfThenElseZero(low, one)));
-  return hn::Ne(ones, hn::Zero(Float()));
-#endif
+  const auto one = hn::Set(Real(), 1.0);
+  return hn::Ne(demote(hn::IfThenElseZero(low, one), hn::IfThenElseZero(high, one)),
+                hn::Zero(Float()));
 }
 
 // The batch's particle indices from p (its i() or j(), plus k), one per lane.
