@@ -180,18 +180,15 @@ bool excludes_coincident(const CoincidenceReport& coincident, int id) {
 VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport& symmetry,
                                    const CoincidenceReport& coincident, bool enabled) {
   VectorTermReport report;
-  for (const auto& [id, pairs] : symmetry) {
-    if (!pairs.newton) continue;
-    if (!enabled) {
-      report[id] = {false, "scalar, as --no-simd asks"};
-      continue;
-    }
-    for (const Stage& stage : model.stages)
-      for (const Statement& st : stage.statements)
-        for (const Accumulate* acc : accumulations_in(st))
-          if (acc->id == id)
-            report[id] = judge(model, st, *acc, excludes_coincident(coincident, id));
-  }
+  for (const Stage& stage : model.stages)
+    for (const Statement& st : stage.statements)
+      for (const Accumulate* acc : accumulations_in(st)) {
+        const auto pairs = symmetry.find(acc->id);
+        if (pairs == symmetry.end() || !pairs->second.newton) continue;
+        report[acc->id] = enabled ? judge(model, st, *acc, excludes_coincident(coincident, acc->id))
+                                  : VectorTermFact{false, "scalar, as --no-simd asks" +
+                                                              scalar_arithmetic(st.schedule)};
+      }
   return report;
 }
 

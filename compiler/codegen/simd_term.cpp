@@ -10,7 +10,8 @@
 // On float lanes (arithmetic = float) the same nodes are emitted over a tag
 // of floats: the walk's dx and |dx|^2 are loaded rounded to float, variables
 // gathered in their storage and converted (partc/simd/float_lanes.hpp), and
-// numbers broadcast as floats.
+// numbers broadcast as floats; each condition is decided on double lanes
+// (see emit_simd_terms), and a term's |dx| is then the condition's, rounded.
 #include "codegen/simd_term.hpp"
 
 #include <fmt/format.h>
