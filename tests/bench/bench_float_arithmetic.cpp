@@ -15,8 +15,10 @@
 //                   part float lanes leave in double;
 //   +scatter        the walk and, per batch, the generated code's scatter of
 //                   its term columns to i and j (scalar, into double sums),
-//                   the terms not computed: what is left of an update is its
-//                   term loop, and clearing and applying the sums;
+//                   the terms not computed;
+//   rest            an update's time less the walk's and the scatter's: its
+//                   term loop, and clearing and applying the sums, in each
+//                   build (what float lanes speed up);
 //   err             the relative L2 error of v's increment after one update,
 //                   ||v - v_ref|| / ||v_ref||, against a long double
 //                   reference: a hand-written cell grid, every pair within rc
@@ -137,9 +139,9 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
       "times in s per update (medians of %d), err = relative L2 of v's increment against long "
       "double\n",
       partc::simd::lanes(), partc::simd::hn::Lanes(partc::simd::Float()), repeats);
-  std::printf("%9s %11s %11s %9s %11s %11s %11s %11s %11s %11s\n", "N", "double", "float",
-              "speedup", "walk", "+scatter", "walk/double", "+sc/double", "err_double",
-              "err_float");
+  std::printf("%9s %10s %10s %8s %10s %10s %8s %8s %10s %10s %9s %9s\n", "N", "double", "float",
+              "speedup", "walk", "+scatter", "walk/d", "+sc/d", "rest_d", "rest_f", "err_d",
+              "err_f");
   for (const std::size_t n : sizes) {
     const double rc = std::sqrt(3.0 / static_cast<double>(n));
     const std::vector<Vec2> points = uniform_points(n);
@@ -192,13 +194,14 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
     }
     const double td = bench::median(t_double), tf = bench::median(t_float),
                  tw = bench::median(t_walk), ts = bench::median(t_scatter);
-    std::printf("%9zu %11.3e %11.3e %9.2f %11.3e %11.3e %11.2f %11.2f %11.2e %11.2e\n", n, td, tf,
-                td / tf, tw, ts, tw / td, ts / td, err_double, err_float);
+    std::printf("%9zu %10.3e %10.3e %8.2f %10.3e %10.3e %8.2f %8.2f %10.3e %10.3e %9.2e %9.2e\n", n,
+                td, tf, td / tf, tw, ts, tw / td, ts / td, td - ts, tf - ts, err_double, err_float);
     if (pairs == 0) std::printf("  (no pairs walked)\n");
   }
   std::printf(
-      "speedup: double's time over float's; walk/double, +sc/double: the shares of the double\n"
-      "update that the walk, and the walk with the scatter, take\n");
+      "speedup: double's time over float's; walk/d, +sc/d: the shares of the double update\n"
+      "that the walk, and the walk with the scatter, take; rest_d, rest_f: double's and float's\n"
+      "update less the walk and the scatter; err_d, err_f: each build's relative L2 error\n");
   return 0;
 }
 
