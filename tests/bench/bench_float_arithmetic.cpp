@@ -8,7 +8,7 @@
 // unit square, one thread, positions fixed (the search is built by the first
 // update, as in bench_md). Per N:
 //   double, float   the time of one update: median of --repeats timings of
-//                   floor(1000 / N) + 1 updates;
+//                   floor(3e6 / N) + 1 updates, interleaved with the others;
 //   walk            the pair walk alone (PairBatches over an OrderedCellList
 //                   at rc, the structure the models' searches choose here, the
 //                   batches handed to a callback that computes nothing): the
@@ -184,7 +184,10 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
       });
     };
 
-    const int per_timing = static_cast<int>(1000 / n) + 1;
+    // About 3e6 point updates a timing (0.1 to 0.2 s here): long enough to
+    // average over the scheduler's slices when other jobs share the cores,
+    // which single updates of a few ms do not (they came out bimodal).
+    const int per_timing = static_cast<int>(3000000 / n) + 1;
     std::vector<double> t_double, t_float, t_walk, t_scatter;
     for (int r = 0; r < repeats; ++r) {
       t_double.push_back(bench::seconds([&] { in_double.step(); }, per_timing) / per_timing);
