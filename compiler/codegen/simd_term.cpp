@@ -379,9 +379,9 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
   Emitter emit(model, names, locals, batch, k, tag, floats, temporaries);
   // On float lanes each condition is still decided on double lanes, for the
   // two vectors of doubles a vector of floats covers, so that the pairs that
-  // count are the ones double arithmetic counts: a float comparison would
-  // move a cutoff by an ulp of float (at N = 10^6 about a pair a step across
-  // it, a whole term wrong).
+  // count are the ones double arithmetic counts: a float comparison moves a
+  // cutoff by up to an ulp of float (on the seed at N = 10^6, ten draws of the
+  // points: one pair counted otherwise, a whole term wrong).
   const std::string wide = floats ? locals.fresh("wide") : "";
   const std::string k_high = floats ? locals.fresh(k + "_high") : "";
   Emitter decide(model, names, locals, batch, k, wide, false, temporaries);
