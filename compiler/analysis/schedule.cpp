@@ -1,10 +1,11 @@
 // Decides whether each schedule entry applies to something.
 //
 // A schedule says how a statement's neighbourhood sums search (a forced
-// structure, Verlet lists with a skin). It runs after the neighbourhood
-// analysis because only that analysis knows which sums are neighbourhood
-// sums: `search = kd_tree` on a statement whose sums are all dense would
-// silently do nothing, so it is an error instead.
+// structure, Verlet lists with a skin) and compute their pair terms
+// (arithmetic). It runs after the neighbourhood analysis because only that
+// analysis knows which sums are neighbourhood sums: `search = kd_tree` on a
+// statement whose sums are all dense would silently do nothing, so it is an
+// error instead.
 #include "analysis/schedule.hpp"
 
 #include "ir/visitor.hpp"
@@ -52,6 +53,11 @@ void check_schedule(const ir::Model& model, const NeighbourhoodReport& neighbour
                           "statement '" + st.name + "' has no neighbourhood sum to schedule",
                           "search, sharing and skin apply to sums whose condition bounds |dx|, "
                           "like sum(j, |dx| < rc, ...)"});
+      else if (st.schedule.arithmetic_loc.end != 0 && !sums.found)
+        errors.push_back({st.schedule.arithmetic_loc,
+                          "statement '" + st.name + "' has no neighbourhood sum for arithmetic",
+                          "arithmetic chooses how the pair terms of sums like "
+                          "sum(j, |dx| < rc, ...) are computed"});
       else if (st.schedule.skin && sums.over_other_set)
         errors.push_back({st.schedule.loc,
                           "a skin (Verlet lists) needs the sums of '" + st.name +

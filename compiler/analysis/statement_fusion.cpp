@@ -67,7 +67,12 @@ class Fuser {
  public:
   Fuser(const ir::Model& m, const NeighbourhoodReport& n, const PairSymmetryReport& s,
         const SearchPlan& p, const ObservedStepReport& o, const SourceFile& file, bool enabled)
-      : m_(m), neighbourhoods_(n), symmetry_(s), plan_(p), observed_(o), file_(file),
+      : m_(m),
+        neighbourhoods_(n),
+        symmetry_(s),
+        plan_(p),
+        observed_(o),
+        file_(file),
         enabled_(enabled) {}
 
   StatementFusion run() {
@@ -115,12 +120,14 @@ class Fuser {
       for (StatementPosition p : pass.statements) {
         members.push_back(named(at(p)));
         const auto fact = observed_.find(p);
-        if (fact == observed_.end() || !fact->second.observed_only) every_step.push_back(members.back());
+        if (fact == observed_.end() || !fact->second.observed_only)
+          every_step.push_back(members.back());
       }
       pass.reason = fmt::format("{}: one pass over {}, {}", fmt::join(members, "; "),
                                 m_.sets[at(pass.statements.front()).set].name, pass.reason);
       if (!every_step.empty() && every_step.size() < members.size())
-        pass.reason += fmt::format("; on steps not observed, {} alone", fmt::join(every_step, "; "));
+        pass.reason +=
+            fmt::format("; on steps not observed, {} alone", fmt::join(every_step, "; "));
     }
     return out_;
   }
@@ -191,6 +198,8 @@ class Fuser {
                          m_.sets[b.set].vars[b.var].name, named(b));
     if (a.schedule.compensated != b.schedule.compensated)
       return both + ": one sums compensated, the other not";
+    if (a.schedule.arithmetic != b.schedule.arithmetic)  // one vector loop has one lane type
+      return both + ": one computes its pair terms in float, the other in double";
     if (pairs_once(a) != pairs_once(b))
       return both + ": one takes each pair once, the other both ways (one walk cannot do both)";
     if (static_cast<bool>(a.schedule.skin) != static_cast<bool>(b.schedule.skin) ||
@@ -213,7 +222,8 @@ class Fuser {
 
   std::string shared_walk(StatementPosition p) const {
     const Statement& st = at(p);
-    if (st.schedule.skin) return "one walk of the Verlet lists with skin " + text(st.schedule.skin->loc);
+    if (st.schedule.skin)
+      return "one walk of the Verlet lists with skin " + text(st.schedule.skin->loc);
     const int group = plan_.group_of.at(neighbour_sums(st).front());
     return fmt::format("one walk of search {}", plan_.groups[group].search + 1);
   }

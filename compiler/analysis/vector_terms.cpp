@@ -6,14 +6,19 @@
 //
 // A term has a vector form when every node of its condition and body does:
 // reals and vecs (a vec is one vector per component), literals and params,
-// dx and |dx|, particle variables of i or j stored as double (gathered by
-// index), + - * /, comparisons, and/or/not, if(c, a, b) (both sides
-// computed, one kept), and exp, log, sqrt, abs, min, max, tanh, sin, cos,
-// dot, norm and pow by an integer constant; a user function's call as its
-// body with the arguments put in. Ints, random draws, nested sums,
-// float storage and the remaining functions keep the scalar walk, and the
+// dx and |dx|, real and vec particle variables of i or j (gathered by index,
+// from double or float storage), + - * /, comparisons, and/or/not, if(c, a,
+// b) (both sides computed, one kept), and exp, log, sqrt, abs, min, max,
+// tanh, sin, cos, dot, norm and pow by an integer constant; a user
+// function's call as its body with the arguments put in. Ints, random draws,
+// nested sums and the remaining functions keep the scalar walk, and the
 // reason names the first such node. Sums only: a count or a min/max per pair
 // is not a per-lane term.
+//
+// The statement's arithmetic (schedule) says which lanes a vector term is
+// computed on: double, or float (twice the lanes: the walk's dx and |dx|^2
+// and the gathered variables rounded to float, the term's values added into
+// the double sums). A scalar term is computed in double whatever it says.
 #include "analysis/vector_terms.hpp"
 
 #include <cmath>
@@ -50,8 +55,6 @@ class VectorForm : public Visitor {
       refuse("a variable of another sum's particle (" + var.name + ")");
     else if (var.type != Type::Real && var.type != Type::Vec)
       refuse(std::string(type_name(var.type)) + " variable " + var.name);
-    else if (var.storage != Precision::Double)
-      refuse("variable " + var.name + ", stored as float");
   }
   void visit(const Dx&) override {}
   void visit(const Random&) override { refuse("a random draw"); }
@@ -124,28 +127,47 @@ class VectorForm : public Visitor {
   int j_label_;
 };
 
-VectorTermFact judge(const Model& model, const Accumulate& acc, bool excludes_coincident) {
+// Why a scalar term ignores the schedule's float arithmetic, when it asks for it.
+std::string scalar_arithmetic(const Schedule& schedule) {
+  return schedule.arithmetic == Precision::Float
+             ? "; computed in double, though the arithmetic is " + schedule.arithmetic_reason +
+                   ": float lanes are for vector terms only"
+             : "";
+}
+
+VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& acc,
+                     bool excludes_coincident) {
+  const std::string in_double = scalar_arithmetic(st.schedule);
   if (acc.reduction != Reduction::Sum)
     return {false, std::string("scalar: a ") + reduction_name(acc.reduction) +
-                       " is not a sum of per-pair terms"};
-  if (acc.type != Type::Real && acc.type != Type::Vec) return {false, "scalar: a sum of ints"};
+                       " is not a sum of per-pair terms" + in_double};
+  if (acc.type != Type::Real && acc.type != Type::Vec)
+    return {false, "scalar: a sum of ints" + in_double};
   // User functions as their bodies, as codegen/simd_term.cpp emits them.
   VectorForm form(model, acc.label);
   for (const Expr& e : {acc.condition, acc.body}) {
     if (!e) continue;
     const Expr inlined = inline_calls(e, model);
-    if (!inlined) return {false, "scalar: its user functions call others too many times to inline"};
+    if (!inlined)
+      return {false, "scalar: its user functions call others too many times to inline" + in_double};
     form.visit(inlined);
   }
-  if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle};
+  if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle + in_double};
+  const bool on_floats = st.schedule.arithmetic == Precision::Float;
   return {true,
           std::string("on vectors of pairs: each point's pairs packed (compress-stores), the "
                       "condition and term computed a vector of pairs at a time, then given to "
                       "both particles") +
               (excludes_coincident ? "; i's pair with itself left out, as the condition "
                                      "excludes |dx| = 0"
-                                   : ""),
-          !excludes_coincident};
+                                   : "") +
+              "; arithmetic: " +
+              (on_floats ? "float lanes (twice as many): the walk's dx and |dx|^2 rounded to "
+                           "float and the variables read in float, the condition decided in "
+                           "double, each term added into double sums"
+                         : "double lanes") +
+              " (" + st.schedule.arithmetic_reason + ")",
+          !excludes_coincident, st.schedule.arithmetic};
 }
 
 bool excludes_coincident(const CoincidenceReport& coincident, int id) {
@@ -158,17 +180,15 @@ bool excludes_coincident(const CoincidenceReport& coincident, int id) {
 VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport& symmetry,
                                    const CoincidenceReport& coincident, bool enabled) {
   VectorTermReport report;
-  for (const auto& [id, pairs] : symmetry) {
-    if (!pairs.newton) continue;
-    if (!enabled) {
-      report[id] = {false, "scalar, as --no-simd asks"};
-      continue;
-    }
-    for (const Stage& stage : model.stages)
-      for (const Statement& st : stage.statements)
-        for (const Accumulate* acc : accumulations_in(st))
-          if (acc->id == id) report[id] = judge(model, *acc, excludes_coincident(coincident, id));
-  }
+  for (const Stage& stage : model.stages)
+    for (const Statement& st : stage.statements)
+      for (const Accumulate* acc : accumulations_in(st)) {
+        const auto pairs = symmetry.find(acc->id);
+        if (pairs == symmetry.end() || !pairs->second.newton) continue;
+        report[acc->id] = enabled ? judge(model, st, *acc, excludes_coincident(coincident, acc->id))
+                                  : VectorTermFact{false, "scalar, as --no-simd asks" +
+                                                              scalar_arithmetic(st.schedule)};
+      }
   return report;
 }
 

@@ -19,6 +19,9 @@ struct VectorTermFact {
   // Whether the walk must give i's pair with itself (dx = 0): not when the
   // condition excludes |dx| = 0, where that term would be masked to 0.
   bool self_pair = true;
+  // The lanes the term is computed on (the statement's schedule: arithmetic);
+  // either way its values are added into double sums.
+  ir::Precision arithmetic = ir::Precision::Double;
 };
 
 using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate::id

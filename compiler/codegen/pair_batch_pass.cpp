@@ -5,7 +5,10 @@
 // and a scalar loop then gives each pair's term to i and +-term to j, into
 // the same per-particle member vectors the scalar walk (pair_pass) fills.
 // i's terms arrive one by one rather than summed first, so the totals differ
-// from the scalar walk's by roundings, not by thread count.
+// from the scalar walk's by roundings, not by thread count. With float
+// arithmetic (the members share it: statement fusion sees to that) the vector
+// loop runs on float lanes, twice the pairs a step, into float columns, and
+// the scatter adds each float term into the double sums.
 #include <fmt/format.h>
 
 #include "codegen/model_emitter.hpp"
@@ -33,30 +36,42 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
     linef("{}.assign({}, {});", pair_sums_member(*acc, kernel), count, identity(*acc));
     self_pair = self_pair || facts_.vector_terms.at(acc->id).self_pair;
   }
+  const Precision arithmetic = facts_.vector_terms.at(l.members.front()->id).arithmetic;
+  const bool floats = arithmetic == Precision::Float;
   line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
   line("// together (partc/simd), then given to i and j.");
+  if (floats) {
+    line("// The terms on float lanes, twice the pairs a vector (schedule: arithmetic = float),");
+    line("// each added into the double sums.");
+  } else {
+    line("// The terms on double lanes (schedule: arithmetic = double).");
+  }
   if (!self_pair) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
-  linef("{}({}, [&](partc::simd::PairBatch<{}>& {}) {{", walk, self_pair,
-        m_.dim, batch);
+  linef("{}({}, [&](partc::simd::PairBatch<{}>& {}) {{", walk, self_pair, m_.dim, batch);
   line("namespace hn = partc::simd::hn;");
-  linef("const partc::simd::Real {};", tag);
-  const SimdTermCode code = emit_simd_terms(l.members, m_, names, locals, batch, k, tag);
+  linef("const partc::simd::{} {};", floats ? "Float" : "Real", tag);
+  const SimdTermCode code =
+      emit_simd_terms(l.members, m_, names, locals, batch, k, tag, arithmetic);
   // One column per component of each term, kept for the scatter.
   std::vector<std::vector<std::string>> columns;
   std::size_t column_count = 0;
   for (const auto& term : code.terms) column_count += term.size();
-  linef("{}.columns({});", batch, column_count);
+  const char* column_type = floats ? "float" : "double";
+  const std::string of_type = floats ? "<float>" : "";
+  linef("{}.columns{}({});", batch, of_type, column_count);
   std::size_t next = 0;
   for (std::size_t a = 0; a < l.members.size(); ++a) {
     columns.emplace_back();
     for (std::size_t c = 0; c < code.terms[a].size(); ++c) {
       columns.back().push_back(locals.fresh("term_" + std::to_string(next)));
-      linef("double* const {} = {}.column({});", columns.back().back(), batch, next++);
+      linef("{}* const {} = {}.column{}({});", column_type, columns.back().back(), batch, of_type,
+            next++);
     }
   }
   for (const std::string& text : code.setup) line(text);
   // The padding's terms are computed too (from harmless entries) and never read.
-  linef("for (std::size_t {0} = 0; {0} < {1}.padded(); {0} += hn::Lanes({2})) {{", k, batch, tag);
+  linef("for (std::size_t {0} = 0; {0} < {1}.padded({3}); {0} += hn::Lanes({2})) {{", k, batch, tag,
+        floats ? fmt::format("hn::Lanes({})", tag) : "");
   for (const std::string& text : code.lines) line(text);
   for (std::size_t a = 0; a < l.members.size(); ++a)
     for (std::size_t c = 0; c < columns[a].size(); ++c)

@@ -6,6 +6,12 @@
 // that was a third of the time), and applied only when a component is
 // needed. Results differ from the scalar walk's by a few roundings: Highway's
 // exp and log are within a few ulp, and the factor changes the order.
+//
+// On float lanes (arithmetic = float) the same nodes are emitted over a tag
+// of floats: the walk's dx and |dx|^2 are loaded rounded to float, variables
+// gathered in their storage and converted (partc/simd/float_lanes.hpp), and
+// numbers broadcast as floats; each condition is decided on double lanes
+// (see emit_simd_terms), and a term's |dx| is then the condition's, rounded.
 #include "codegen/simd_term.hpp"
 
 #include <fmt/format.h>
@@ -34,28 +40,46 @@ struct VecValue {
 
 class Emitter {
  public:
+  // `temporaries` numbers the t1, t2, ... of every emitter of one loop.
   Emitter(const Model& model, const ExpressionNames& names, NameTable& locals, std::string batch,
-          std::string k, std::string tag)
+          std::string k, std::string tag, bool floats, int& temporaries)
       : model_(model),
         names_(names),
         locals_(locals),
         batch_(std::move(batch)),
         k_(std::move(k)),
-        d_(std::move(tag)) {}
+        d_(std::move(tag)),
+        floats_(floats),
+        temporaries_(temporaries) {}
+
+  // Later loads from pair k on (the second half of a float vector's pairs).
+  Emitter& at(const std::string& k) {
+    k_ = k;
+    return *this;
+  }
+  // The local holding |dx| from pair k on, if computed already; else "".
+  std::string computed_norm_of_dx() const {
+    const auto r2 = declared_.find(walk_column("r2()"));
+    if (r2 == declared_.end()) return "";
+    const auto norm = declared_.find(fmt::format("hn::Sqrt({})", r2->second));
+    return norm == declared_.end() ? "" : norm->second;
+  }
+  // |dx| as this value, when a term needs it (on float lanes: the double
+  // condition's, rounded once, rather than a square root of r2 rounded).
+  void give_norm_of_dx(const std::string& value) { given_norm_of_dx_ = value; }
 
   std::vector<std::string> setup;  // before the loop: the broadcasts
   std::vector<std::string> lines;  // in it
 
   std::string real(const Expr& e) {
     switch (e->kind) {
-      case ExprKind::Literal: return broadcast(emit_literal(Type::Real, as<Literal>(e)->value));
+      case ExprKind::Literal: return broadcast(literal(as<Literal>(e)->value));
       case ExprKind::ParamRef:
-        return broadcast(as_double(names_.params.at(as<ParamRef>(e)->param), e->type));
+        return broadcast(as_lane(names_.params.at(as<ParamRef>(e)->param), e->type));
       case ExprKind::ConstRef:
-        return broadcast(as_double(names_.consts[as<ConstRef>(e)->constant], e->type));
+        return broadcast(as_lane(names_.consts[as<ConstRef>(e)->constant], e->type));
       case ExprKind::ObservableRef:
-        return broadcast(
-            as_double(names_.observables.at(as<ObservableRef>(e)->observable), e->type));
+        return broadcast(as_lane(names_.observables.at(as<ObservableRef>(e)->observable), e->type));
       case ExprKind::VarRef: return variable(*as<VarRef>(e)).components[0];
       case ExprKind::Unary: return declare(fmt::format("hn::Neg({})", real(as<Unary>(e)->operand)));
       case ExprKind::Binary: return real_binary(*as<Binary>(e));
@@ -158,43 +182,65 @@ class Emitter {
     const std::string value = fmt::format("hn::Set({}, {})", d_, scalar);
     auto [it, fresh] = declared_.emplace(value, "");
     if (fresh) {
-      const bool named =
-          !scalar.empty() &&
-          (std::isalpha(static_cast<unsigned char>(scalar[0])) || scalar[0] == '_') &&
-          scalar.find_first_of("(<:.") == std::string::npos;
-      it->second = named ? locals_.fresh(scalar + "_lanes")
-                         : locals_.fresh("t" + std::to_string(++temporaries_));
+      const std::string name = named_scalar(scalar);
+      it->second = !name.empty() ? locals_.fresh(name + "_lanes")
+                                 : locals_.fresh("t" + std::to_string(++temporaries_));
       setup.push_back(fmt::format("const auto {} = {};", it->second, value));
     }
     return it->second;
   }
-  static std::string as_double(const std::string& name, Type type) {
+  // The name a broadcast value is of (rc, or rc in static_cast<float>(rc)); "" for a number.
+  static std::string named_scalar(const std::string& scalar) {
+    const std::string cast = "static_cast<float>(";
+    const std::string name = scalar.rfind(cast, 0) == 0
+                                 ? scalar.substr(cast.size(), scalar.size() - cast.size() - 1)
+                                 : scalar;
+    const bool is_name = !name.empty() &&
+                         (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                         name.find_first_of("(<:.") == std::string::npos;
+    return is_name ? name : "";
+  }
+  // A scalar of the model as a lane's value: a double, or a float on float lanes.
+  std::string as_lane(const std::string& name, Type type) const {
+    if (floats_) return "static_cast<float>(" + name + ")";
     return type == Type::Real ? name : "static_cast<double>(" + name + ")";
+  }
+  // A literal in the lanes' type: on float lanes the float nearest to it.
+  std::string literal(double value) const {
+    if (!floats_ || !std::isfinite(value))
+      return as_lane(emit_literal(Type::Real, value), Type::Real);
+    std::string text = fmt::format("{}", static_cast<float>(value));  // shortest round trip
+    if (text.find_first_of(".e") == std::string::npos) text += ".0";
+    return text + "f";
+  }
+  // A column of the walk's (dx, r2) from k, in the lanes' type.
+  std::string walk_column(const std::string& column) const {
+    return floats_ ? fmt::format("partc::simd::load_demoted({}.{} + {})", batch_, column, k_)
+                   : fmt::format("hn::LoadU({}, {}.{} + {})", d_, batch_, column, k_);
   }
 
   VecValue dx() {
     VecValue v;
     for (int c = 0; c < model_.dim; ++c)
       v.components.push_back(
-          named("dx_" + std::to_string(c),
-                fmt::format("hn::LoadU({}, {}.dx({}) + {})", d_, batch_, c, k_)));
+          named("dx_" + std::to_string(c), walk_column(fmt::format("dx({})", c))));
     return v;
   }
-  std::string squared_norm_of_dx() {
-    return named("r2", fmt::format("hn::LoadU({}, {}.r2() + {})", d_, batch_, k_));
-  }
+  std::string squared_norm_of_dx() { return named("r2", walk_column("r2()")); }
   std::string norm_of_dx() {
-    return named("dx_norm", fmt::format("hn::Sqrt({})", squared_norm_of_dx()));
+    return named("dx_norm", given_norm_of_dx_.empty()
+                                ? fmt::format("hn::Sqrt({})", squared_norm_of_dx())
+                                : given_norm_of_dx_);
   }
 
-  // The particle's index per lane, as signed integers for gathers; times the
-  // dimension for a vec's components (repeated adds: no 64-bit multiply everywhere).
+  // The particle's index per lane, as signed integers for gathers (as wide
+  // as the lanes); times the dimension for a vec's components (repeated adds:
+  // no 64-bit multiply everywhere).
   std::string index(int label, int scale) {
     const std::string of = label == 0 ? "i" : "j";
-    std::string lanes = named(
-        of + "_lanes", fmt::format("hn::BitCast(hn::RebindToSigned<decltype({0})>(), hn::LoadU("
-                                   "hn::RebindToUnsigned<decltype({0})>(), {1}.{2}() + {3}))",
-                                   d_, batch_, of, k_));
+    std::string lanes =
+        named(of + "_lanes",
+              fmt::format("partc::simd::index_lanes({}, {}.{}() + {})", d_, batch_, of, k_));
     if (scale == 1) return lanes;
     std::string scaled = lanes;
     for (int s = 1; s < scale; ++s)
@@ -203,13 +249,14 @@ class Emitter {
     return scaled;
   }
 
+  // Gathered from its storage (float or double) into the lanes' type.
   VecValue variable(const VarRef& v) {
     const Variable& var = model_.sets[v.set].vars[v.var];
     const std::string array = names_.array(v.set, v.var);
     VecValue value;
     if (var.type == Type::Real) {
-      value.components.push_back(
-          declare(fmt::format("hn::GatherIndex({}, {}.data(), {})", d_, array, index(v.label, 1))));
+      value.components.push_back(declare(
+          fmt::format("partc::simd::gather({}, {}.data(), {})", d_, array, index(v.label, 1))));
       return value;
     }
     const std::string at = index(v.label, model_.dim);
@@ -219,8 +266,8 @@ class Emitter {
                  : declare(fmt::format(
                        "hn::Add({}, hn::Set(hn::RebindToSigned<decltype({})>(), {}))", at, d_, c));
       value.components.push_back(
-          declare(fmt::format("hn::GatherIndex({}, reinterpret_cast<const double*>({}.data()), {})",
-                              d_, array, offset)));
+          declare(fmt::format("partc::simd::gather({}, reinterpret_cast<const {}*>({}.data()), {})",
+                              d_, precision_name(var.storage), array, offset)));
     }
     return value;
   }
@@ -312,25 +359,55 @@ class Emitter {
   const Model& model_;
   const ExpressionNames& names_;
   NameTable& locals_;
-  const std::string batch_, k_, d_;
+  const std::string batch_;
+  std::string k_;
+  const std::string d_;
+  const bool floats_;                            // float lanes (arithmetic = float), else double
   std::map<std::string, std::string> declared_;  // value -> its local
-  int temporaries_ = 0;
+  int& temporaries_;
+  std::string given_norm_of_dx_;
 };
 
 }  // namespace
 
 SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const Model& model,
                              const ExpressionNames& names, NameTable& locals,
-                             const std::string& batch, const std::string& k,
-                             const std::string& tag) {
-  Emitter emit(model, names, locals, batch, k, tag);
+                             const std::string& batch, const std::string& k, const std::string& tag,
+                             Precision arithmetic) {
+  const bool floats = arithmetic == Precision::Float;
+  int temporaries = 0;
+  Emitter emit(model, names, locals, batch, k, tag, floats, temporaries);
+  // On float lanes each condition is still decided on double lanes, for the
+  // two vectors of doubles a vector of floats covers, so that the pairs that
+  // count are the ones double arithmetic counts: a float comparison moves a
+  // cutoff by up to an ulp of float (on the seed at N = 10^6, ten draws of the
+  // points: one pair counted otherwise, a whole term wrong).
+  const std::string wide = floats ? locals.fresh("wide") : "";
+  const std::string k_high = floats ? locals.fresh(k + "_high") : "";
+  Emitter decide(model, names, locals, batch, k, wide, false, temporaries);
   SimdTermCode code;
+  if (floats) {
+    code.setup.push_back(fmt::format("const partc::simd::Real {};", wide));
+    code.lines.push_back(
+        fmt::format("const std::size_t {} = {} + hn::Lanes({});", k_high, k, wide));
+  }
   for (const Accumulate* acc : accs) {
     // User functions as their bodies (analysis/vector_terms.cpp judged these).
     const Expr condition = acc->condition ? inline_calls(acc->condition, model) : nullptr;
     const Expr body = inline_calls(acc->body, model);
     if ((acc->condition && !condition) || !body) internal_error("simd_term: a call not inlined");
-    const std::string when = condition ? emit.mask(condition) : "";
+    std::string when;
+    if (condition && floats) {
+      const std::string low = decide.at(k).mask(condition);
+      const std::string low_norm = decide.computed_norm_of_dx();
+      const std::string high = decide.at(k_high).mask(condition);
+      const std::string high_norm = decide.computed_norm_of_dx();
+      when = emit.declare(fmt::format("partc::simd::demote_mask({}, {})", low, high));
+      if (!low_norm.empty() && !high_norm.empty())
+        emit.give_norm_of_dx(fmt::format("partc::simd::demote({}, {})", low_norm, high_norm));
+    } else if (condition) {
+      when = emit.mask(condition);
+    }
     std::vector<std::string> parts;
     if (acc->type == Type::Real) {
       parts.push_back(emit.real(body));
@@ -345,8 +422,10 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
         part = emit.declare(fmt::format("hn::IfThenElseZero({}, {})", when, part));
     code.terms.push_back(parts);
   }
-  code.setup = emit.setup;
-  code.lines = emit.lines;
+  for (const auto* lines : {&decide.setup, &emit.setup})
+    code.setup.insert(code.setup.end(), lines->begin(), lines->end());
+  for (const auto* lines : {&decide.lines, &emit.lines})
+    code.lines.insert(code.lines.end(), lines->begin(), lines->end());
   return code;
 }
 

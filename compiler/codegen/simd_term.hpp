@@ -22,13 +22,14 @@ struct SimdTermCode {
 };
 
 // The loop body for the sums `accs`, of one walk: `batch` names the PairBatch,
-// `k` the first pair of the vector and `tag` the vector tag (partc::simd::Real)
-// (lanes past the batch's end, its padding, are computed like the others);
-// `names` names the kernel's params, consts, observables and arrays; the
-// body's locals are drawn from `locals`.
+// `k` the first pair of the vector and `tag` the vector tag (partc::simd::Real,
+// or partc::simd::Float when `arithmetic` is float) (lanes past the batch's
+// end, its padding, are computed like the others); `names` names the
+// kernel's params, consts, observables and arrays; the body's locals are
+// drawn from `locals`.
 SimdTermCode emit_simd_terms(const std::vector<const ir::Accumulate*>& accs, const ir::Model& model,
                              const ExpressionNames& names, NameTable& locals,
-                             const std::string& batch, const std::string& k,
-                             const std::string& tag);
+                             const std::string& batch, const std::string& k, const std::string& tag,
+                             ir::Precision arithmetic);
 
 }  // namespace partc::codegen

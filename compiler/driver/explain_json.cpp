@@ -1,9 +1,8 @@
 // --explain=json: the facts --explain prints, as one JSON document, for
 // tests and tools. The reasons are the analyses' own strings; this file only
 // arranges them (nlohmann::json writes and escapes).
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "driver/pipeline.hpp"
 #include "ir/visitor.hpp"
@@ -51,7 +50,8 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
   if (c.scene.is_scene()) out["effects"] = scene_facts(c.scene, file);
   out["folded"] = Json::array();
   for (const ir::FoldedTerm& t : c.folded)
-    out["folded"].push_back({{"effect", t.effect}, {"target", t.target}, {"at", where(file, t.loc)}});
+    out["folded"].push_back(
+        {{"effect", t.effect}, {"target", t.target}, {"at", where(file, t.loc)}});
   out["folded_conditions"] = Json::array();
   for (const ir::FoldedCondition& f : c.folded_conditions)
     out["folded_conditions"].push_back(
@@ -71,7 +71,8 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
   out["fused_passes"] = Json::array();
   for (const FusedPass& pass : c.facts.fusion.passes) {
     Json lines = Json::array();
-    for (const auto& [g, k] : pass.statements) lines.push_back(c.model.stages[g].statements[k].line);
+    for (const auto& [g, k] : pass.statements)
+      lines.push_back(c.model.stages[g].statements[k].line);
     out["fused_passes"].push_back({{"lines", lines}, {"reason", pass.reason}});
   }
   out["not_fused_passes"] = Json::array();
@@ -100,9 +101,10 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
       Json with = Json::array();
       for (int other : group.chosen_at_run_time)
         with.push_back(c.facts.searches.groups[other].search + 1);
-      j["rule"] = {{"walks", "the search at M, the largest radius of these searches' groups, "
-                             "while (M / r)^dim <= growth, with r this group's radius; else its "
-                             "own search, built at r"},
+      j["rule"] = {{"walks",
+                    "the search at M, the largest radius of these searches' groups, "
+                    "while (M / r)^dim <= growth, with r this group's radius; else its "
+                    "own search, built at r"},
                    {"dim", c.model.dim},
                    {"growth", share_candidate_growth},
                    {"searches", with}};
@@ -144,8 +146,11 @@ std::string explain_json(const Compilation& c, const SourceFile& file) {
         if (fact.kind == SearchFact::Kind::Neighbours) {
           a["newton"] = c.facts.symmetry.at(acc->id).newton;
           a["pairs"] = c.facts.symmetry.at(acc->id).reason;
-          if (auto vector = c.facts.vector_terms.find(acc->id); vector != c.facts.vector_terms.end())
-            a["terms"] = {{"vector", vector->second.vector}, {"reason", vector->second.reason}};
+          if (auto vector = c.facts.vector_terms.find(acc->id);
+              vector != c.facts.vector_terms.end())
+            a["terms"] = {{"vector", vector->second.vector},
+                          {"arithmetic", ir::precision_name(vector->second.arithmetic)},
+                          {"reason", vector->second.reason}};
         }
         if (auto fast = c.facts.fast_sums.find(acc->id); fast != c.facts.fast_sums.end())
           a["fast_sum"] = fast->second.reason;

@@ -133,9 +133,9 @@ std::string bytes_per_particle(const ir::ParticleSet& set, int dim) {
     const ir::Variable& var = set.vars[v];
     const std::size_t scalar = var.storage == ir::Precision::Float ? 4 : 8;
     const std::size_t bytes = v == ir::kAlive || var.type == ir::Type::Bool ? 1
-                              : v == ir::kId || var.type == ir::Type::Int  ? 8
-                              : var.type == ir::Type::Vec                  ? scalar * dim
-                                                                           : scalar;
+                              : v == ir::kId || var.type == ir::Type::Int   ? 8
+                              : var.type == ir::Type::Vec                   ? scalar * dim
+                                                                            : scalar;
     total += bytes;
     parts.push_back(fmt::format("{} {}", var.name, bytes));
   }
@@ -153,22 +153,24 @@ std::string explain(const Compilation& c, const SourceFile& file) {
                        f.effect.empty() ? "a statement" : "effect " + f.effect, file.slice(f.loc),
                        file.line_reference(f.loc.begin), f.condition ? "true" : "false");
   for (const ir::FoldedTerm& t : c.folded)
-    out += fmt::format("folded: {}'s term of {} ({}) is 0 whatever the data (a constant 0 factor)\n",
-                       t.effect.empty() ? "a statement" : "effect " + t.effect, t.target,
-                       file.line_reference(t.loc.begin));
+    out +=
+        fmt::format("folded: {}'s term of {} ({}) is 0 whatever the data (a constant 0 factor)\n",
+                    t.effect.empty() ? "a statement" : "effect " + t.effect, t.target,
+                    file.line_reference(t.loc.begin));
   for (const ir::DroppedDeclaration& d : c.unread)
     out += fmt::format("folded: {} {} ({}) is not emitted: only folded code read it\n", d.kind,
                        d.name, file.line_reference(d.loc.begin));
   for (const ir::InlinedVariable& v : c.single_use.inlined)
-    out += fmt::format("fused: {}.{} is not stored: {} computes it where {} reads it\n", v.set,
-                       v.var, file.line_reference(v.writer.begin),
-                       file.line_reference(v.reader.begin));
+    out +=
+        fmt::format("fused: {}.{} is not stored: {} computes it where {} reads it\n", v.set, v.var,
+                    file.line_reference(v.writer.begin), file.line_reference(v.reader.begin));
   for (const ir::InlineRefusal& r : c.single_use.refused)
     out += fmt::format("not fused: {}.{} stays stored: {}\n", r.set, r.var, r.reason);
   for (const FusedPass& pass : c.facts.fusion.passes) out += "fused pass: " + pass.reason + "\n";
-  for (const FusionRefusal& r : c.facts.fusion.refused)
-    out += "not fused pass: " + r.reason + "\n";
-  out += "storage (computed in double however stored: a load widens, a store rounds once):\n";
+  for (const FusionRefusal& r : c.facts.fusion.refused) out += "not fused pass: " + r.reason + "\n";
+  out +=
+      "storage (computed in double however stored, except pair terms on float lanes "
+      "(arithmetic = float): a load widens, a store rounds once):\n";
   for (const ir::ParticleSet& set : c.model.sets) {
     for (const ir::Variable& var : set.vars)
       if (!var.storage_reason.empty())
@@ -198,7 +200,8 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         out += "  runs: " + observed->second.reason + "\n";
       if (st.solve_operator)
         out += "  solve: " +
-               c.facts.linear_operators.at({static_cast<int>(g), static_cast<int>(k)}).reason + "\n";
+               c.facts.linear_operators.at({static_cast<int>(g), static_cast<int>(k)}).reason +
+               "\n";
       for (const ir::Accumulate* acc : ir::accumulations_in(st)) {
         const SearchFact& fact = c.facts.neighbourhoods.at(acc->id);
         out += fmt::format("  {}: {}\n", ir::accumulation_heading(c.model, st, *acc), fact.reason);
@@ -210,14 +213,15 @@ std::string explain(const Compilation& c, const SourceFile& file) {
           out += "    " + fast->second.reason + "\n";
         if (fact.kind != SearchFact::Kind::Neighbours) continue;
         const PairSymmetryFact& pairs = c.facts.symmetry.at(acc->id);
-        out += std::string("    pairs: ") +
-               (pairs.newton ? (st.schedule.skin
-                                    ? "each pair once, from half Verlet lists (Newton's third law): "
-                                    : "each pair once (Newton's third law) when the search "
-                                      "walks pairs in parallel (a cell list) or the set is small "
-                                      "enough for one thread; else per-particle queries: ")
-                             : "both ways: ") +
-               pairs.reason + "\n";
+        out +=
+            std::string("    pairs: ") +
+            (pairs.newton ? (st.schedule.skin
+                                 ? "each pair once, from half Verlet lists (Newton's third law): "
+                                 : "each pair once (Newton's third law) when the search "
+                                   "walks pairs in parallel (a cell list) or the set is small "
+                                   "enough for one thread; else per-particle queries: ")
+                          : "both ways: ") +
+            pairs.reason + "\n";
         if (auto vector = c.facts.vector_terms.find(acc->id); vector != c.facts.vector_terms.end())
           out += "    terms: " + vector->second.reason + "\n";
         if (!st.schedule.skin) {
@@ -228,20 +232,22 @@ std::string explain(const Compilation& c, const SourceFile& file) {
         if (st.schedule.skin)
           out += "    schedule: Verlet lists with skin " +
                  std::string(file.slice(st.schedule.skin->loc)) +
-                 ", rebuilt only when a particle has moved more than half the skin (a radius over half "
+                 ", rebuilt only when a particle has moved more than half the skin (a radius over "
+                 "half "
                  "a periodic box length is refused at run time: lists keep one image)\n";
         else if (st.schedule.search != ir::SearchChoice::Auto)
           out += std::string("    schedule: always ") + ir::search_choice_name(st.schedule.search) +
                  " (brute force for a radius over half a periodic box length)\n";
         else
-          out += "    at run time, from the data: brute force when a cell list would save each query "
-                 "fewer than partc::NeighbourSearch::default_margin pair tests (few particles, or "
-                 "a radius near the box size); a k-d tree when the particles are so clustered that "
-                 "a cell list's queries would examine more than "
-                 "NeighbourSearch::kd_tree_above_examined points; else an ordered cell list. "
-                 "A radius over half a periodic box length always means brute force, which sums "
-                 "every periodic image within it. Rebuilt only after positions change. Override "
-                 "with a schedule.\n";
+          out +=
+              "    at run time, from the data: brute force when a cell list would save each query "
+              "fewer than partc::NeighbourSearch::default_margin pair tests (few particles, or "
+              "a radius near the box size); a k-d tree when the particles are so clustered that "
+              "a cell list's queries would examine more than "
+              "NeighbourSearch::kd_tree_above_examined points; else an ordered cell list. "
+              "A radius over half a periodic box length always means brute force, which sums "
+              "every periodic image within it. Rebuilt only after positions change. Override "
+              "with a schedule.\n";
       }
     }
   }

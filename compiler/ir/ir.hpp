@@ -138,8 +138,30 @@ struct Binary : ExprNode {
 // (the sign of the divisor, as Python's %); Cross is a vec in 3D and the
 // scalar z-component in 2D.
 enum class Function {
-  Exp, Log, Sqrt, Pow, Abs, Min, Max, Dot, Norm, Floor, Ceil, Round,
-  Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Tanh, Sign, Clamp, Mod, Cross
+  Exp,
+  Log,
+  Sqrt,
+  Pow,
+  Abs,
+  Min,
+  Max,
+  Dot,
+  Norm,
+  Floor,
+  Ceil,
+  Round,
+  Sin,
+  Cos,
+  Tan,
+  Asin,
+  Acos,
+  Atan,
+  Atan2,
+  Tanh,
+  Sign,
+  Clamp,
+  Mod,
+  Cross
 };
 const char* function_name(Function f);
 struct Call : ExprNode {
@@ -303,8 +325,10 @@ struct Frames {
 
 // How a particle variable is stored (schedule: precision = float). Every
 // expression is computed in double whatever the storage: a load widens, a
-// store rounds once.
+// store rounds once; only a statement's arithmetic (Schedule) computes its
+// vector pair terms in float.
 enum class Precision { Double, Float };
+const char* precision_name(Precision p);  // as .part spells it
 
 struct Variable {
   std::string name;
@@ -312,7 +336,7 @@ struct Variable {
   Expr initial;  // per particle at creation; null means zero
   bool builtin;  // p, id, alive
   Location loc;
-  bool mirrored = false;  // a vec turned with its particle at a reflecting face
+  bool mirrored = false;                  // a vec turned with its particle at a reflecting face
   Precision storage = Precision::Double;  // Float only for real and vec variables and p
   std::string storage_reason;             // why, for --explain: set by sema's schedule checks
   bool effect_owned = false;  // declared by an effect's `owns`: passes may decide its storage
@@ -366,6 +390,13 @@ struct Schedule {
   // summation = compensated: every sum of the statement adds with Neumaier's
   // compensation, each particle its own terms in order (no pair walks).
   bool compensated = false;
+  // arithmetic = float: the statement's pair terms computed on vectors of
+  // floats (twice the lanes), added into double sums per particle; only
+  // vector pair terms (analysis/vector_terms.cpp) change, a scalar term
+  // stays double. Its own entry (arithmetic_loc set), else the model's.
+  Precision arithmetic = Precision::Double;
+  std::string arithmetic_reason;  // for --explain: set by sema's schedule checks
+  Location arithmetic_loc;        // of the statement's own entry; end 0 when none
   Location loc;
 };
 
@@ -379,7 +410,7 @@ struct Origin {
 };
 
 struct Statement {
-  std::string name;  // empty unless named for the schedule
+  std::string name;             // empty unless named for the schedule
   std::vector<Origin> origins;  // empty unless instantiated from effects
   // The value is the origins' terms joined, t1 + t2 - t3 (ir/terms.hpp): one
   // per origin, as channel merging made it; not once fusion inlined a writer.
@@ -420,9 +451,9 @@ struct Iterate {
 enum class StageKind { Init, Step, Named };
 struct Stage {
   StageKind kind;
-  std::string name;  // of a named stage
+  std::string name;              // of a named stage
   bool also_after_load = false;  // an init stage that also ends load (primed slots)
-  std::vector<Iterate> loops;  // in order, not nested
+  std::vector<Iterate> loops;    // in order, not nested
   // Whether statement k runs in an iterate block's loop.
   bool in_loop(int k) const {
     return std::any_of(loops.begin(), loops.end(),

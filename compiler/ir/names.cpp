@@ -111,6 +111,14 @@ const char* dense_method_name(DenseMethod d) {
   return "?";
 }
 
+const char* precision_name(Precision p) {
+  switch (p) {
+    case Precision::Double: return "double";
+    case Precision::Float: return "float";
+  }
+  return "?";
+}
+
 int ParticleSet::find_var(const std::string& var_name) const {
   for (std::size_t k = 0; k < vars.size(); ++k)
     if (vars[k].name == var_name) return static_cast<int>(k);

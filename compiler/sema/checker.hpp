@@ -60,8 +60,8 @@ struct Scope {
   std::vector<int> bound;  // labels visible here, innermost last
   bool in_accumulation = false;
   std::string several_sets;  // "F and W" when the innermost label runs over several sets
-  bool home = true;                      // there is a particle i (not in an observable's statement)
-  bool observables = false;              // may read observables, which change during a run
+  bool home = true;          // there is a particle i (not in an observable's statement)
+  bool observables = false;  // may read observables, which change during a run
   const ir::UserFn* function = nullptr;  // whose arguments are in scope
 };
 
@@ -147,9 +147,13 @@ class Sema {
     Location loc;
   };
   void check_precision_request(const ast::ScheduleItem& item);
-  ir::Precision precision_named(const ast::Chain& value);
+  ir::Precision precision_named(const ast::Chain& value, const std::string& option);
+  std::string scheduled_reason(ir::Precision chosen, const std::string& whose, Location at) const;
   void decide_storage();
+  // Pair-term arithmetic: a statement's own entry, else the whole model's.
+  void decide_arithmetic();
   std::optional<PrecisionRequest> model_precision_;
+  std::optional<PrecisionRequest> model_arithmetic_;
   std::map<std::pair<int, int>, PrecisionRequest> variable_precision_;  // (set, var) ->
   ir::SearchChoice search_choice(const ast::Chain& value);
   ir::Sharing sharing_choice(const ast::Chain& value);
@@ -211,7 +215,7 @@ class Sema {
     return false;
   }
   std::set<std::string> failed_names_;  // declared with errors: later uses are follow-ons
-  std::set<std::string> failed_sets_;  // sets whose name clashed with another declaration
+  std::set<std::string> failed_sets_;   // sets whose name clashed with another declaration
   static constexpr int kMaxExpressionDepth = 2000;
   int expression_depth_ = 0;  // of the expression being checked
   std::map<std::string, Location> globals_;

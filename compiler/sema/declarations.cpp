@@ -37,6 +37,7 @@ ir::Model Sema::run(const ast::Program& program) {
     if (auto schedule = boost::get<ast::ScheduleBlock>(&decl))
       for (const ast::ScheduleItem& item : schedule->items) guarded([&] { check_schedule(item); });
   decide_storage();
+  decide_arithmetic();
   if (has_errors()) throw CompileError(diagnostics_);
   return std::move(model_);
 }
@@ -98,14 +99,13 @@ void Sema::check_domain(const ast::DomainDecl& decl) {
   std::vector<std::string> kind_of(model_.dim);
   for (const ast::BoundaryClause& clause : decl.boundaries) {
     const std::string& kind = clause.kind.name;
-    std::vector<bool>* axes = kind == "periodic" ? &d.periodic
+    std::vector<bool>* axes = kind == "periodic"  ? &d.periodic
                               : kind == "reflect" ? &d.reflect
                               : kind == "open"    ? &d.open
                                                   : nullptr;
     if (!axes)
       fail(clause.kind.loc,
-           "unknown boundary " + quoted(kind) +
-               suggestion(kind, {"periodic", "reflect", "open"}),
+           "unknown boundary " + quoted(kind) + suggestion(kind, {"periodic", "reflect", "open"}),
            "a domain's faces are periodic=(...), reflect=(...) or open=(...); an axis in none "
            "of them is unbounded");
     for (const ast::Identifier& axis : clause.axes) {
@@ -192,12 +192,18 @@ void Sema::declare_const(const ast::ConstDecl& decl) {
   // A const folded at compile time is emitted as a C++ literal: it must be one.
   if (auto folded = evaluate_constant(value, model_)) {
     if ((value->type == Type::Real || value->type == Type::Vec) && !std::isfinite(*folded))
-      fail(decl.value.loc, "const " + quoted(decl.name.name) + " is " +
-                               (std::isnan(*folded) ? "NaN" : *folded > 0 ? "+inf" : "-inf"),
-           "a const must be a finite number: check its arguments' ranges (sqrt(-1), log(0), 1 / 0)");
+      fail(
+          decl.value.loc,
+          "const " + quoted(decl.name.name) + " is " +
+              (std::isnan(*folded) ? "NaN"
+               : *folded > 0       ? "+inf"
+                                   : "-inf"),
+          "a const must be a finite number: check its arguments' ranges (sqrt(-1), log(0), 1 / 0)");
     if (value->type == Type::Int && !ir::as<ir::Literal>(value) && std::abs(*folded) > 0x1p53)
-      fail(decl.value.loc, "const " + quoted(decl.name.name) + " is an int beyond 2^53 computed from "
-                               "other consts, which partc cannot fold exactly",
+      fail(decl.value.loc,
+           "const " + quoted(decl.name.name) +
+               " is an int beyond 2^53 computed from "
+               "other consts, which partc cannot fold exactly",
            "write its value as one literal, or make it a real");
   }
   model_.consts.push_back({decl.name.name, value->type, value, decl.loc});
@@ -210,8 +216,8 @@ void Sema::check_requirement(const ast::Requirement& r) {
   const Expr condition = check(r.condition, scope);
   const std::string text(file_.slice(r.condition.loc));
   if (condition->type != Type::Bool)
-    fail(r.condition.loc, "a requirement is a condition, true or false, not " +
-                              a_type(condition->type));
+    fail(r.condition.loc,
+         "a requirement is a condition, true or false, not " + a_type(condition->type));
   const std::optional<double> holds = evaluate_constant(condition, model_);
   if (!holds)
     fail(r.condition.loc, "requires " + text + " reads what is set at run time",
@@ -294,10 +300,17 @@ void Sema::declare_set(const ast::ParticlesDecl& decl) {
               convert(check(*var.value, scope), type, var.value->loc, "variable " + var.name.name);
         }
         if (var.mirrored && type != Type::Vec)
-          fail(var.name.loc, "only a vec can be mirrored: " + quoted(var.name.name) + " is " +
-                                 a_type(type));
-        set.vars.push_back({var.name.name, type, initial, false, var.loc, var.mirrored,
-                            ir::Precision::Double, {}, var.effect_owned});
+          fail(var.name.loc,
+               "only a vec can be mirrored: " + quoted(var.name.name) + " is " + a_type(type));
+        set.vars.push_back({var.name.name,
+                            type,
+                            initial,
+                            false,
+                            var.loc,
+                            var.mirrored,
+                            ir::Precision::Double,
+                            {},
+                            var.effect_owned});
       });
     });
   }

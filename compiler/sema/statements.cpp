@@ -369,6 +369,11 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
         fail(option.value.loc, "summation is plain or compensated",
              "compensated: Neumaier's summation, for terms of wildly different sizes");
       st.schedule.compensated = id->name == "compensated";
+    } else if (option.key.name == "arithmetic") {
+      st.schedule.arithmetic = precision_named(option.value, "arithmetic");
+      st.schedule.arithmetic_loc = option.loc;
+      st.schedule.arithmetic_reason =
+          scheduled_reason(st.schedule.arithmetic, "this statement", option.loc);
     } else if (option.key.name == "solver" || option.key.name == "max_iterations") {
       if (!st.solve_operator)
         fail(option.key.loc, quoted(option.key.name) + " schedules a solve, and " +
@@ -390,11 +395,12 @@ void Sema::check_schedule(const ast::ScheduleItem& item) {
     } else {
       fail(option.key.loc,
            "unknown schedule option " + quoted(option.key.name) +
-               suggestion(option.key.name, {"search", "sharing", "skin", "summation", "solver",
-                                            "tol", "max_iterations", "dense", "order"}),
+               suggestion(option.key.name, {"search", "sharing", "skin", "summation", "arithmetic",
+                                            "solver", "tol", "max_iterations", "dense", "order"}),
            "options: search = auto | brute_force | cell_list | kd_tree; "
            "sharing = auto | shared | separate; skin = LENGTH; "
-           "summation = plain | compensated; dense = direct | fmm, with tol = 1e-6 or "
+           "summation = plain | compensated; arithmetic = double | float; "
+           "dense = direct | fmm, with tol = 1e-6 or "
            "order = K; for a solve: solver = auto | lu | cg | bicgstab | gmres, tol = 1e-10, "
            "max_iterations = K");
     }
@@ -423,8 +429,8 @@ void Sema::check_fast_sum_options(const ir::Statement& st, const ast::ScheduleIt
          "'tol' schedules a solve or a fast sum, and " + quoted(st.name) + " is neither",
          "for a fast dense sum: dense = fmm, tol = 1e-6");
   if (st.schedule.order && !fmm)
-    fail(option_loc("order"), "'order' schedules a fast sum, and " + quoted(st.name) +
-                                  " has no dense = fmm",
+    fail(option_loc("order"),
+         "'order' schedules a fast sum, and " + quoted(st.name) + " has no dense = fmm",
          "dense = fmm, order = 8: Chebyshev nodes per axis of the fast multipole method");
   // A solve's tol is its solver's: the fast sum's follows from it, or from an order.
   if (st.schedule.order && st.schedule.tolerance && !st.solve_operator)
@@ -444,7 +450,9 @@ ir::Expr Sema::positive_schedule_value(const ast::ScheduleOption& option, Type t
 }
 
 // precision = float | double for the whole model (no subject) or for one
-// variable (P.v), the only option either takes; decide_storage applies them.
+// variable (P.v), the only option a variable takes; the whole model also
+// takes arithmetic = float | double. decide_storage and decide_arithmetic
+// apply them.
 void Sema::check_precision_request(const ast::ScheduleItem& item) {
   std::pair<int, int> variable{-1, -1};
   std::string whose = "the whole model";
@@ -465,24 +473,40 @@ void Sema::check_precision_request(const ast::ScheduleItem& item) {
     variable = {set, var};
   }
   for (const ast::ScheduleOption& option : item.options) {
+    if (option.key.name == "arithmetic" && !item.subject) {
+      if (model_arithmetic_)
+        fail(option.key.loc, "the arithmetic of the whole model is chosen twice",
+             "first on line " +
+                 std::to_string(file_.line_column(model_arithmetic_->loc.begin).line));
+      model_arithmetic_ = PrecisionRequest{precision_named(option.value, "arithmetic"), option.loc};
+      continue;
+    }
     if (option.key.name != "precision") {
       static const std::vector<std::string> statement_options = {
-          "search", "sharing", "skin", "summation", "solver", "tol", "max_iterations"};
+          "search",     "sharing", "skin", "summation",
+          "arithmetic", "solver",  "tol",  "max_iterations"};
       const bool of_statements = std::find(statement_options.begin(), statement_options.end(),
                                            option.key.name) != statement_options.end();
+      const std::vector<std::string> own =
+          item.subject ? std::vector<std::string>{"precision"}
+                       : std::vector<std::string>{"precision", "arithmetic"};
       if (!of_statements)
-        fail(option.key.loc,
-             "unknown schedule option " + quoted(option.key.name) +
-                 suggestion(option.key.name, {"precision"}),
-             whose + " takes precision = float | double");
+        fail(
+            option.key.loc,
+            "unknown schedule option " + quoted(option.key.name) + suggestion(option.key.name, own),
+            whose + (item.subject ? " takes precision = float | double"
+                                  : " takes precision = float | double and arithmetic = "
+                                    "float | double"));
       fail(option.key.loc, quoted(option.key.name) + " schedules a statement, not " + whose,
            "name the statement, as in force: " + option.key.name + " = ...");
     }
-    const PrecisionRequest request{precision_named(option.value), option.loc};
+    const PrecisionRequest request{precision_named(option.value, "precision"), option.loc};
     const PrecisionRequest* earlier = nullptr;
     if (!item.subject) {
-      if (model_precision_) earlier = &*model_precision_;
-      else model_precision_ = request;
+      if (model_precision_)
+        earlier = &*model_precision_;
+      else
+        model_precision_ = request;
     } else if (const auto [it, fresh] = variable_precision_.emplace(variable, request); !fresh) {
       earlier = &it->second;
     }
@@ -492,13 +516,24 @@ void Sema::check_precision_request(const ast::ScheduleItem& item) {
   }
 }
 
-ir::Precision Sema::precision_named(const ast::Chain& value) {
+// The value of precision (storage) or arithmetic (pair terms).
+ir::Precision Sema::precision_named(const ast::Chain& value, const std::string& option) {
   const ast::Operand* sole = ast::sole_operand(value);
   const ast::Identifier* id = sole ? boost::get<ast::Identifier>(sole) : nullptr;
   if (id && id->name == "float") return ir::Precision::Float;
   if (id && id->name == "double") return ir::Precision::Double;
-  fail(value.loc, "precision is float or double, not " + quoted(source_text(value.loc)),
-       "float stores each number in 32 bits, double in 64; both compute in double");
+  fail(value.loc, option + " is float or double, not " + quoted(source_text(value.loc)),
+       option == "precision"
+           ? "float stores each number in 32 bits, double in 64; both compute in double"
+           : "float computes vector pair terms on float lanes, twice as many, and adds them "
+             "into double sums; double computes them in double");
+}
+
+// "float, as the schedule says for this variable (md.part:20)".
+std::string Sema::scheduled_reason(ir::Precision chosen, const std::string& whose,
+                                   Location at) const {
+  return std::string(ir::precision_name(chosen)) + ", as the schedule says for " + whose + " (" +
+         file_.line_reference(at.begin) + ")";
 }
 
 // The storage of every real and vec variable, p included: its own schedule
@@ -517,11 +552,23 @@ void Sema::decide_storage() {
         continue;
       }
       var.storage = chosen->precision;
-      var.storage_reason =
-          std::string(var.storage == ir::Precision::Float ? "float" : "double") +
-          ", as the schedule says for " +
-          (own != variable_precision_.end() ? "this variable" : "the whole model") + " (" +
-          file_.line_reference(chosen->loc.begin) + ")";
+      var.storage_reason = scheduled_reason(
+          var.storage, own != variable_precision_.end() ? "this variable" : "the whole model",
+          chosen->loc);
+    }
+}
+
+void Sema::decide_arithmetic() {
+  for (ir::Stage& stage : model_.stages)
+    for (ir::Statement& st : stage.statements) {
+      if (st.schedule.arithmetic_loc.end != 0) continue;  // its own entry
+      if (!model_arithmetic_) {
+        st.schedule.arithmetic_reason = "double, the default";
+        continue;
+      }
+      st.schedule.arithmetic = model_arithmetic_->precision;
+      st.schedule.arithmetic_reason =
+          scheduled_reason(st.schedule.arithmetic, "the whole model", model_arithmetic_->loc);
     }
 }
 

@@ -19,7 +19,8 @@ partc::Compilation compile(const std::string& step_body) {
       "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\n"
       "param r: real = 0.1\nconst r2 = r * r\n"
       "particles P(10) {\n  u: real = 0\n  w: real = 1\n}\n"
-      "step {\n" + step_body + "\n}\n");
+      "step {\n" +
+      step_body + "\n}\n");
 }
 
 // "dense", or the radius expression of the first accumulation.
@@ -51,7 +52,8 @@ partc::PairSymmetryFact symmetry_of(const std::string& statement) {
       "particles P(10) {\n  v: vec = 0\n  r: real = 0.01\n  m: real = 1\n  h: real = 0.1\n"
       "  u: real = 0\n  n: int = 0\n  f: vec = 0\n}\n"
       "particles Q(5) {\n  m: real = 1\n}\n"
-      "step P {\n" + statement + "\n}\n");
+      "step P {\n" +
+      statement + "\n}\n");
   return c.facts.symmetry.at(0);
 }
 
@@ -73,8 +75,7 @@ TEST_CASE("neighbourhood: upper bounds on |dx| become search radii", "[analysis]
 }
 
 TEST_CASE("neighbourhood: per-particle bounds are sized by their largest terms", "[analysis]") {
-  const partc::Compilation c =
-      compile("u[i] = sum(j, |dx| < w[i] + w[j] + r and |dx| > 0, w[j])");
+  const partc::Compilation c = compile("u[i] = sum(j, |dx| < w[i] + w[j] + r and |dx| > 0, w[j])");
   const partc::SearchFact& fact = c.facts.neighbourhoods.at(0);
   REQUIRE(fact.kind == partc::SearchFact::Kind::Neighbours);
   std::vector<std::string> terms;
@@ -137,12 +138,12 @@ TEST_CASE("symmetry: even terms under an even condition take each pair once", "[
                     "lj(amix(m[i], m[j]), smix(h[i], h[j]), |dx|))") == 1);
   CHECK(newton_sign("f[i] = sum(j, |dx| < smix(r[i], r[j]), amix(m[i], m[j]) * dx)") == -1);
   CHECK(newton_sign("f[i] = sum(j, |dx| < rc, gap(h[j], h[i]) * dx)") == 1);  // odd * odd
-  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, twice(m[i] * m[j]))") == 1);   // calls in calls
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, twice(m[i] * m[j]))") == 1);    // calls in calls
   // Twins across a product's grouping: (-k * q[i]) * q[j] / r^3 * dx, Coulomb's force.
-  CHECK(newton_sign("f[i] = sum(j, |dx| < rc and |dx| > 0, -2 * m[i] * m[j] / pow(|dx|, 3) * dx)") ==
-        -1);
-  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, m[i] * h[i] * W(|dx|) * h[j] / (r[j] * r[i]) * m[j])") ==
-        1);
+  CHECK(newton_sign(
+            "f[i] = sum(j, |dx| < rc and |dx| > 0, -2 * m[i] * m[j] / pow(|dx|, 3) * dx)") == -1);
+  CHECK(newton_sign(
+            "u[i] = sum(j, |dx| < rc, m[i] * h[i] * W(|dx|) * h[j] / (r[j] * r[i]) * m[j])") == 1);
 }
 
 TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
@@ -158,7 +159,7 @@ TEST_CASE("symmetry: anything else is evaluated both ways", "[analysis]") {
   CHECK(newton_sign("u[i] = sum(j, dx.x > 0 and |dx| < 1, 1.0)") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc and dx.x == 0.5, 1.0)") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, lj_force(dx.x))") == 0);
-  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(dx.x > 0, 1, -1))") == 0);  // condition odd
+  CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(dx.x > 0, 1, -1))") == 0);       // condition odd
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, if(|dx| < 0.05, dx.x, 1))") == 0);  // odd, even
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, mod(dx.x, 0.1))") == 0);
   CHECK(newton_sign("u[i] = sum(j, |dx| < rc, ratio(m[i], m[j]))") == 0);  // m[i] / m[j]
@@ -213,7 +214,8 @@ std::vector<std::string> folded(const std::string& step_body) {
   const partc::Compilation c = compile_text(
       "model m\ndim 3\ndomain lo=(0, 0, 0) hi=(1, 1, 1)\nparam r: real = 0.1\nconst zero = 0\n"
       "particles P(10) {\n  u: real = 0\n  w: real = 1\n  f: vec = 0\n}\n"
-      "step P {\n" + step_body + "\n}\n");
+      "step P {\n" +
+      step_body + "\n}\n");
   std::vector<std::string> out;
   for (const partc::ir::Stage& stage : c.model.stages)
     for (const partc::ir::Statement& st : stage.statements)
@@ -224,7 +226,7 @@ std::vector<std::string> folded(const std::string& step_body) {
 }  // namespace
 
 TEST_CASE("fold: a term with a constant 0 factor is removed", "[analysis]") {
-  CHECK(folded("u[i] += zero * w[i]").empty());                   // adds nothing: gone
+  CHECK(folded("u[i] += zero * w[i]").empty());  // adds nothing: gone
   CHECK(folded("f[i] += -w[i] * zero * vec(0, 0, 1)").empty());
   CHECK(folded("u[i] = zero * sum(j, |dx| < r, w[j])") == std::vector<std::string>{"0"});
   CHECK(folded("u[i] = sum(j, |dx| < r, zero * w[j]) / w[i]") == std::vector<std::string>{"0"});
@@ -248,7 +250,8 @@ ConditionsFolded conditions_folded(const std::string& step_body) {
       "const one = 1\nconst pick = one\nconst spare = 2\n"
       "fn near(x: real) = 2 * x\nfn far(x: real) = 3 * x\nfn idle(x: real) = x\n"
       "particles P(10) {\n  u: real = 0\n  w: real = 1\n}\n"
-      "step P {\n" + step_body + "\n}\n");
+      "step P {\n" +
+      step_body + "\n}\n");
   ConditionsFolded out;
   for (const partc::ir::Stage& stage : c.model.stages)
     for (const partc::ir::Statement& st : stage.statements)
@@ -275,7 +278,8 @@ TEST_CASE("fold: a conditional on a constant is the branch it chooses", "[analys
   CHECK(conditions_folded("u[i] = if(not (pick == 1), near(w[i]), far(w[i]))").functions ==
         Names{"far", "idle"});
   // A const read elsewhere too stays.
-  const ConditionsFolded read = conditions_folded("u[i] = if(pick == 1, near(w[i]), far(w[i])) + pick");
+  const ConditionsFolded read =
+      conditions_folded("u[i] = if(pick == 1, near(w[i]), far(w[i])) + pick");
   CHECK(read.functions == Names{"near", "idle"});
   CHECK(read.consts == Names{"one", "pick", "spare"});
   // Inside out: dim is a constant, w[i] > 0 is not.
@@ -344,4 +348,61 @@ TEST_CASE("statement fusion: what one walk cannot serve stays apart, with its re
   CHECK(apart.passes.empty());
   REQUIRE(apart.refused.size() == 1);
   CHECK_THAT(apart.refused[0], Catch::Contains("searches of their own"));
+}
+
+namespace {
+
+// The vector-term fact of each accumulation, in order, of a 2-d model with
+// a float-stored q, under the given schedule block.
+std::vector<partc::VectorTermFact> vector_terms_of(const std::string& schedule) {
+  const partc::Compilation c = compile_text(
+      "model m\ndim 2\ndomain lo=(0, 0) hi=(1, 1) periodic=(x, y)\n"
+      "param r: real = 0.1\n"
+      "particles P(10) {\n  u: real = 0\n  w: real = 0\n  q: real = 1\n  n: int = 0\n}\n"
+      "step {\n"
+      "  density: u[i] = sum(j, |dx| < r, (q[i] * q[j]) * exp(-|dx|))\n"
+      "  w[i] = sum(j, |dx| < r, |dx|)\n"
+      "}\nschedule {\n  P.q: precision = float\n" +
+      schedule + "\n}\n");
+  std::vector<partc::VectorTermFact> facts;
+  for (const auto& [id, fact] : c.facts.vector_terms) facts.push_back(fact);
+  return facts;
+}
+
+}  // namespace
+
+TEST_CASE("vector terms: the schedule's arithmetic chooses their lanes", "[analysis]") {
+  using partc::ir::Precision;
+  // A float-stored variable no longer keeps the scalar walk; double by default.
+  const auto plain = vector_terms_of("");
+  REQUIRE(plain.size() == 2);
+  CHECK(plain[0].vector);
+  CHECK(plain[0].arithmetic == Precision::Double);
+  CHECK_THAT(plain[0].reason, Catch::Contains("arithmetic: double lanes (double, the default)"));
+  // Per statement: only the named one.
+  const auto named = vector_terms_of("  density: arithmetic = float");
+  CHECK(named[0].arithmetic == Precision::Float);
+  CHECK_THAT(named[0].reason, Catch::Contains("float lanes"));
+  CHECK_THAT(named[0].reason, Catch::Contains("for this statement (line 17)"));
+  CHECK(named[1].arithmetic == Precision::Double);
+  // The whole model, and a statement's own entry over it.
+  const auto model_wide = vector_terms_of("  arithmetic = float\n  density: arithmetic = double");
+  CHECK(model_wide[0].arithmetic == Precision::Double);
+  CHECK(model_wide[1].arithmetic == Precision::Float);
+  CHECK_THAT(model_wide[1].reason, Catch::Contains("for the whole model (line 17)"));
+}
+
+TEST_CASE("statement fusion: one pass computes its pair terms in one arithmetic", "[analysis]") {
+  const partc::Compilation c = compile_text(
+      "model m\ndim 2\ndomain lo=(0, 0) hi=(1, 1) periodic=(x, y)\n"
+      "param r: real = 0.1\n"
+      "particles P(10) {\n  u: real = 0\n  w: real = 0\n}\n"
+      "step {\n"
+      "  density: u[i] = sum(j, |dx| < r, exp(-|dx|))\n"
+      "  w[i] = sum(j, |dx| < r, |dx|)\n"
+      "}\nschedule {\n  density: arithmetic = float\n}\n");
+  CHECK(c.facts.fusion.passes.empty());
+  REQUIRE(c.facts.fusion.refused.size() == 1);
+  CHECK_THAT(c.facts.fusion.refused[0].reason,
+             Catch::Contains("one computes its pair terms in float, the other in double"));
 }

@@ -7,7 +7,8 @@
 // other elementary functions on vectors (a few ulp, where std:: gives < 1).
 //
 // hn names the target's ops; Real is a vector tag of doubles, Index one of
-// unsigned integers of the same width (a lane per pair in both).
+// unsigned integers of the same width (a lane per pair in both); Float one
+// of floats, as wide as Real's vectors (twice the lanes: float_lanes.hpp).
 #pragma once
 
 // Only the static target: no dispatch tables, and Highway 1.0.3's check of
@@ -25,6 +26,11 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 using Real = hn::ScalableTag<double>;
 using Index = hn::RebindToUnsigned<Real>;
+#if HWY_TARGET == HWY_SCALAR
+using Float = hn::Rebind<float, Real>;  // one lane, as Real's
+#else
+using Float = hn::Repartition<float, Real>;
+#endif
 
 // Lanes of a Real vector: a batch's buffers are padded by this many entries.
 inline std::size_t lanes() { return hn::Lanes(Real()); }

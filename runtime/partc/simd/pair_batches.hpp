@@ -25,7 +25,9 @@
 //
 // Surprises:
 // - Entries count() .. padded() - 1 are padding (i and j the batch's last i,
-//   dx = 0, r2 = 1): a vector loop may read them, and masks them out.
+//   dx = 0, r2 = 1): a vector loop may read them, and masks them out. The
+//   padding covers a vector of floats too (Float: twice the lanes),
+//   for a loop to padded(hn::Lanes(Float())).
 // - In exact mode (a periodic dimension with < 3 cells) the cell list has no
 //   runs: the batch is filled from its scalar scan instead.
 // - build copies the cell list's sorted points into per-dimension arrays
@@ -36,11 +38,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/compress.hpp"
+#include "partc/simd/float_lanes.hpp"  // for the batches' readers: generated vector terms
 #include "partc/simd/highway.hpp"
 #include "partc/vec.hpp"
 
@@ -48,31 +52,38 @@ namespace partc::simd {
 
 // Pairs of consecutive points, packed, structure of arrays. columns(n) gives
 // the caller n more arrays of the same length (a term's components kept for
-// the scatter, say).
+// the scatter, say), of doubles or, columns<float>(n), of floats.
 template <int D>
 class PairBatch {
  public:
   std::size_t count() const { return count_; }
-  // count() rounded up to whole vectors.
-  std::size_t padded() const { return (count_ + lanes() - 1) / lanes() * lanes(); }
+  // count() rounded up to whole vectors of `vector_lanes` (at most those of Float).
+  std::size_t padded(std::size_t vector_lanes = lanes()) const {
+    return (count_ + vector_lanes - 1) / vector_lanes * vector_lanes;
+  }
   const std::uint64_t* i() const { return i_.data(); }
   const std::uint64_t* j() const { return j_.data(); }
   const double* dx(int d) const { return dx_[d].data(); }
   const double* r2() const { return r2_.data(); }
-  double* column(std::size_t c) { return columns_[c].data(); }
+  template <class T = double>
+  T* column(std::size_t c) {
+    return std::get<Columns<T>>(columns_)[c].data();
+  }
   // The slab of the walk whose pairs the batch holds (0 for a serial walk):
   // one slab's batches are handed over on one thread, in the walk's order.
   std::size_t slab() const { return slab_; }
   void set_slab(std::size_t a) { slab_ = a; }
+  template <class T = double>
   void columns(std::size_t n) {
-    if (columns_.size() < n) columns_.resize(n);
-    for (auto& column : columns_) column.resize(j_.size());
+    Columns<T>& of_t = std::get<Columns<T>>(columns_);
+    if (of_t.size() < n) of_t.resize(n);
+    for (auto& column : of_t) column.resize(j_.size());
   }
 
   void clear() { count_ = 0; }
   // i and j (padding included) renamed: k becomes name[k].
   void renumber(const std::vector<std::size_t>& name) {
-    for (std::size_t k = 0; k < count_ + lanes(); ++k) {
+    for (std::size_t k = 0; k < count_ + padding(); ++k) {
       i_[k] = name[i_[k]];
       j_[k] = name[j_[k]];
     }
@@ -86,7 +97,8 @@ class PairBatch {
     j_.resize(grown);
     for (auto& d : dx_) d.resize(grown);
     r2_.resize(grown);
-    for (auto& column : columns_) column.resize(grown);
+    for (auto& column : std::get<Columns<double>>(columns_)) column.resize(grown);
+    for (auto& column : std::get<Columns<float>>(columns_)) column.resize(grown);
   }
   void push(std::size_t i, std::size_t j, const Vec<D>& dx) {
     reserve(1);
@@ -173,19 +185,24 @@ class PairBatch {
   // to amortise the call, few enough to stay in L1 with its columns.
   static constexpr std::size_t batch_vectors = 8;
 
-  // Pads to whole vectors (and one more, for loads that overrun) with
-  // harmless entries: i and j the last entry's i, dx = 0, r2 = 1.
+  // Pads to whole vectors of floats (and so of doubles) with harmless
+  // entries: i and j the last entry's i, dx = 0, r2 = 1.
   void finish() {
-    const Real d;
-    const Index du;
-    const auto last = hn::Set(du, count_ > 0 ? i_[count_ - 1] : 0);
-    hn::StoreU(last, du, i_.data() + count_);
-    hn::StoreU(last, du, j_.data() + count_);
-    for (auto& dx : dx_) hn::StoreU(hn::Zero(d), d, dx.data() + count_);
-    hn::StoreU(hn::Set(d, 1.0), d, r2_.data() + count_);
+    const std::size_t last = count_ > 0 ? i_[count_ - 1] : 0;
+    const std::size_t end = count_ + padding();
+    std::fill(i_.begin() + count_, i_.begin() + end, last);
+    std::fill(j_.begin() + count_, j_.begin() + end, last);
+    for (auto& dx : dx_) std::fill(dx.begin() + count_, dx.begin() + end, 0.0);
+    std::fill(r2_.begin() + count_, r2_.begin() + end, 1.0);
   }
 
  private:
+  template <class T>
+  using Columns = std::vector<std::vector<T>>;
+  // Entries of padding after count(): a vector of floats (reserve keeps
+  // 2 * lanes() spare, which holds it).
+  static std::size_t padding() { return hn::Lanes(Float()); }
+
   template <class F>
   void hand_over(F& f) {
     finish();
@@ -198,7 +215,7 @@ class PairBatch {
   std::vector<std::uint64_t> i_, j_;
   std::array<std::vector<double>, D> dx_;
   std::vector<double> r2_;
-  std::vector<std::vector<double>> columns_;
+  std::tuple<Columns<double>, Columns<float>> columns_;
 };
 
 template <int D>
