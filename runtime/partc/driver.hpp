@@ -268,6 +268,49 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
 // here, named after the model.
 std::string last_finite_path(const std::string& model, const DriverOptions& options);
 
+// When a run writes, logs and checks, the same for every model: run_model
+// asks it at each step. Frames are due for a set every --every steps, else
+// its own interval; a step is observed when something reads the state after
+// it (a frame, a log row, or it is the last).
+class RunPlan {
+ public:
+  // frames: one per set; named: the model names their variables (`output
+  // SET: ...`), else frames hold every variable.
+  RunPlan(const DriverOptions& options, std::vector<FrameSpec> frames, bool named,
+          std::optional<ThermoLog> log);
+
+  bool observed(std::int64_t step) const;
+  // Whether the state of `step` is checked for NaN and Inf: every
+  // --check-every steps, and whenever a frame is written (unless checks are off).
+  bool check_due(std::int64_t step) const;
+  void found_finite(std::int64_t step) { clean_ = step; }
+  // In a handler of the NumericalError e of the check at `step`: rethrows it,
+  // or, when the last clean check was more than a step before, an error that
+  // says since when the value may be there.
+  [[noreturn]] void rethrow_with_last_clean(const NumericalError& e, std::int64_t step) const;
+
+  // The series the set's frame of `step` goes to, or null when none is due.
+  VtkSeries* frame_due(const std::string& set, std::int64_t step);
+  // The variables the set's frames hold (null: all of them).
+  const std::vector<std::string>* frame_variables(const std::string& set) const;
+
+  void log_row(std::int64_t step, const std::vector<double>& values) { log_->row(step, values); }
+  void close_log() {
+    if (log_) log_->close();
+  }
+
+ private:
+  bool any_frame_due(std::int64_t step) const;
+  std::int64_t every(const FrameSpec& frame) const;
+
+  const DriverOptions& options_;
+  std::map<std::string, FrameSpec> frames_;
+  bool named_;
+  std::map<std::string, VtkSeries> series_;  // empty without --vtk
+  std::optional<ThermoLog> log_;
+  std::int64_t clean_ = -1;  // the last step found finite
+};
+
 // Writes the kept state after a blow-up; returns what to add to its message.
 template <class Model>
 std::string keep_last_finite(const LastFinite& kept, const Model& model,
@@ -302,23 +345,12 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
 
   const std::vector<std::string> sets = set_names(model);
   // Per set: its frames' variables (all of them without `output SET: ...`).
-  std::map<std::string, FrameSpec> frames;
+  std::vector<FrameSpec> frames;
   if constexpr (has_frames<Model>::value) {
-    for (FrameSpec& f : model.frames()) frames.emplace(f.set, std::move(f));
+    frames = model.frames();
   } else {
-    for (const auto& set : sets) frames.emplace(set, FrameSpec{set, {}, 1});
+    for (const auto& set : sets) frames.push_back(FrameSpec{set, {}, 1});
   }
-  std::map<std::string, VtkSeries> series;
-  if (!options.vtk_prefix.empty())
-    for (const auto& [set, unused] : frames) series.emplace(set, options.vtk_prefix + "_" + set);
-  const auto due = [](std::int64_t step, std::int64_t every) {
-    return every > 0 && step % every == 0;
-  };
-  const auto frame_due = [&](std::int64_t step) {
-    return std::any_of(series.begin(), series.end(), [&](const auto& s) {
-      return due(step, options.every.value_or(frames.at(s.first).every));
-    });
-  };
 
   if constexpr (has_stages<Model>::value)
     for (const auto& [name, runs] : options.stages)
@@ -328,28 +360,20 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   if constexpr (logs_observables<Model>::value)
     log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
                 options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
-  // Whether the state after a step is read: logged, written as a frame, or the run's last.
-  const auto observed = [&](std::int64_t step) {
-    return step == options.steps || frame_due(step) || (log && log->uses(step));
-  };
+  RunPlan plan(options, std::move(frames), has_frames<Model>::value, std::move(log));
 
   // Step 0 (the state after init or load) is checked and written like any other.
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
-  std::int64_t clean = -1;                                     // the last step found finite
   [[maybe_unused]] std::chrono::duration<double> stepping{0};  // in step(), for --profile
   LastFinite kept(model);
   const auto check = [&](std::int64_t step) {
     try {
       model.check_finite();
     } catch (const NumericalError& e) {
-      if (clean < 0 || step - clean <= 1) throw;
-      throw NumericalError(std::string(e.what()) + " (checked every " +
-                           std::to_string(options.check_every) + " steps: it arose after step " +
-                           std::to_string(clean) + ", the last found finite; --check-every 1 " +
-                           "finds the step)");
+      plan.rethrow_with_last_clean(e, step);
     }
-    clean = step;
+    plan.found_finite(step);
     kept.take(model, step);
   };
   try {
@@ -357,25 +381,22 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
       if (k > 0) {
         if constexpr (has_profile<Model>::value) {
           const auto before = std::chrono::steady_clock::now();
-          take_step(model, observed(k));
+          take_step(model, plan.observed(k));
           stepping += std::chrono::steady_clock::now() - before;
         } else {
-          take_step(model, observed(k));
+          take_step(model, plan.observed(k));
         }
       }
       const std::int64_t step = model.step_count();
-      checked = due(step, options.check_every) || (frame_due(step) && options.check_every > 0);
+      checked = plan.check_due(step);
       if (checked) check(step);
       if constexpr (logs_observables<Model>::value)
-        if (observed(k)) log->row(step, model.log_row());
+        if (plan.observed(k)) plan.log_row(step, model.log_row());
       double time = static_cast<double>(step);
       if constexpr (has_time<Model>::value) time = model.time();
       model.for_each_set([&](const char* name, const auto& set) {
-        const auto s = series.find(name);
-        if (s == series.end()) return;
-        const FrameSpec& f = frames.at(name);
-        if (due(step, options.every.value_or(f.every)))
-          s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
+        if (VtkSeries* series = plan.frame_due(name, step))
+          series->write(set, step, time, plan.frame_variables(name));
       });
     }
     if (options.check_every > 0 && !checked) check(model.step_count());
@@ -383,7 +404,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     throw NumericalError(std::string(e.what()) + "\n" + Model::model_name +
                          ": note: " + keep_last_finite(kept, model, options));
   }
-  if (log) log->close();
+  plan.close_log();
 
   if (!options.output.empty())
     model.for_each_set([&](const char* name, const auto& set) {
