@@ -65,7 +65,8 @@ included, median of --repeats runs (3 by default), with OMP_NUM_THREADS =
 The program is built like tests/CMakeLists.txt builds models: partc (--partc,
 or from --build-dir, else the newest build*/compiler/partc) writes MODEL.cpp with
 --main, then g++ -O2 -march=native -ffp-contract=off (--cxx-flags) -std=c++17 -fopenmp with runtime/ (and Eigen) on the
-include path, into --work (BUILD_DIR/sweep by default); a build whose C++
+include path, linked with the runtime library of partc's build (BUILD_DIR/libpartc_runtime.a,
+CMake's target partc_runtime), into --work (BUILD_DIR/sweep by default); a build whose C++
 did not change is reused. --program EXE runs a program built elsewhere
 (CMake's partc_add_model) instead.
 
@@ -149,6 +150,15 @@ def find_partc(build_dir):
     return max(found, key=os.path.getmtime)
 
 
+def runtime_library(partc):
+    """The runtime library built beside PARTC (BUILD_DIR/compiler/partc)."""
+    path = os.path.join(os.path.dirname(os.path.dirname(partc)), "libpartc_runtime.a")
+    if not os.path.exists(path):
+        raise SweepError(f"no runtime library at {path}: build it "
+                         "(cmake --build BUILD_DIR --target partc_runtime)")
+    return path
+
+
 def run_checked(command, what, env=None):
     result = subprocess.run(command, capture_output=True, text=True, env=env)
     if result.returncode != 0:
@@ -183,7 +193,7 @@ def build_program(model, partc, flags, work, cxx_flags):
                "-I", os.path.join(REPO, "runtime")]
     if os.path.isdir("/usr/include/eigen3"):
         command += ["-I", "/usr/include/eigen3"]
-    command += [cpp, "-o", program]
+    command += [cpp, runtime_library(partc), "-o", program]
     print(f"sweep: compiling {cpp}", flush=True)
     run_checked(command, "the C++ compiler")
     return program

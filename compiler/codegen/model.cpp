@@ -269,18 +269,24 @@ void ModelEmitter::header() {
   if (options_.driver_main) headers.push_back("driver.hpp");
   if (options_.profile) headers.push_back("profile.hpp");
   if (!m_.frames.empty()) headers.push_back("vtk.hpp");
-  if (!solve_results_.empty())
-    for (const char* h :
-         {"solve/dense_solve.hpp", "solve/sparse_solve.hpp", "solve/matrix_market.hpp"})
-      headers.push_back(h);
+  // Each solve's own solver (Eigen's dense LU, its sparse Krylov methods and
+  // the matrix-free GMRES take seconds each to compile), and Matrix Market
+  // output for --matrix-market.
+  if (!solve_results_.empty()) headers.push_back("solve/matrix_market.hpp");
+  for (const auto& solve : facts_.linear_operators) {
+    switch (solve_kind(solve.first)) {
+      case SolveKind::dense: headers.push_back("solve/dense_solve.hpp"); break;
+      case SolveKind::sparse: headers.push_back("solve/sparse_solve.hpp"); break;
+      case SolveKind::matrix_free:
+        headers.push_back("solve/direct_residual.hpp");
+        headers.push_back("solve/matrix_free_solve.hpp");
+        break;
+    }
+  }
   if (!fast_sum_records_.empty())
     for (const char* h : {"fast_sum/contract.hpp", "fast_sum/fmm.hpp"}) headers.push_back(h);
-  if (std::any_of(solve_results_.begin(), solve_results_.end(), [](const auto& solve) {
-        return solve.first->schedule.dense == DenseMethod::Fmm;
-      }))
-    for (const char* h : {"solve/direct_residual.hpp", "solve/matrix_free_solve.hpp"})
-      headers.push_back(h);
   std::sort(headers.begin(), headers.end());
+  headers.erase(std::unique(headers.begin(), headers.end()), headers.end());
   for (const std::string& h : headers) linef("#include <partc/{}>", h);
   line("");
 }

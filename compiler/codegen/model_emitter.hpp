@@ -274,6 +274,10 @@ class ModelEmitter {
                 NameTable& locals, const std::string& count);
   void fast_sum_report();
   // codegen/solve.cpp: a solve statement's system, assembled and solved.
+  // How the solve at `position` (stage, statement) runs: what it calls in the
+  // runtime, and so which of its headers the file includes.
+  enum class SolveKind { dense, sparse, matrix_free };
+  SolveKind solve_kind(std::pair<int, int> position) const;
   void solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
                   const std::string& count);
   // The conditions on i under which an operator term applies ("" for always).

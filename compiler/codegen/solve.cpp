@@ -10,12 +10,21 @@
 
 namespace partc::codegen {
 
+ModelEmitter::SolveKind ModelEmitter::solve_kind(std::pair<int, int> position) const {
+  const Statement& st = m_.stages.at(position.first).statements.at(position.second);
+  if (st.schedule.dense == DenseMethod::Fmm) return SolveKind::matrix_free;
+  return !facts_.linear_operators.at(position).sparse || st.schedule.solver == SolverChoice::Lu
+             ? SolveKind::dense
+             : SolveKind::sparse;
+}
+
 void ModelEmitter::solve_body(const Kernel& k, const ExpressionNames& names, NameTable& locals,
                               const std::string& count) {
   const Statement& st = *k.st;
-  if (st.schedule.dense == DenseMethod::Fmm) return matrix_free_solve_body(k, names, locals, count);
+  const SolveKind kind = solve_kind(k.position);
+  if (kind == SolveKind::matrix_free) return matrix_free_solve_body(k, names, locals, count);
   const LinearOperatorFact& op = facts_.linear_operators.at(k.position);
-  const bool dense = !op.sparse || st.schedule.solver == SolverChoice::Lu;
+  const bool dense = kind == SolveKind::dense;
   const std::string unknown = m_.sets[st.set].vars[st.var].name;
   const std::string i = names.labels[0];
   const std::string matrix = locals.fresh("matrix"), rhs = locals.fresh("rhs");

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "partc/domain.hpp"
+#include "partc/search_instances.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -196,5 +197,8 @@ class BruteForce {
   std::vector<Vec<D>> image_shifts_;
   std::vector<Vec<D>> points_;
 };
+
+// Compiled once, in the runtime library (search_instances.hpp).
+PARTC_SEARCH_INSTANCES(extern template, BruteForce);
 
 }  // namespace partc

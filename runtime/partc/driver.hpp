@@ -6,8 +6,8 @@
 // [SET=]FILE.csv, --output FILE.csv, --vtk PREFIX, --every M, --check-every M,
 // --last-finite FILE.csv, --log FILE.csv, --log-every M, --log-file-every M, --quiet,
 // and for models that have them --stage NAME[:K], --matrix-market PREFIX (solves) and
-// --check-accuracy (fast sums); "--option=value" works too. Exit status: 0 success, 1 bad input file or I/O
-// failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
+// --check-accuracy (fast sums); "--option=value" works too. Exit status: 0 success, 1 bad input
+// file or I/O failure, 2 bad arguments, 3 numerical blow-up (NaN/Inf).
 //
 // Surprises:
 // - Every argument is checked before any work, including the parameter
@@ -43,15 +43,17 @@
 //   predicted error and, with --check-accuracy, the error measured against
 //   the direct sum), and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
+// - The command line, --help and the exit statuses are the same code for
+//   every model, compiled once in the runtime library (driver.cpp), from
+//   the ModelFacts a model gives: link partc_runtime.
 #pragma once
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
-#include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -59,7 +61,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -119,16 +120,14 @@ struct has_solves<Model, std::void_t<decltype(std::declval<const Model&>().solve
 template <class Model, class = void>
 struct has_fast_sums : std::false_type {};
 template <class Model>
-struct has_fast_sums<Model,
-                     std::void_t<decltype(std::declval<const Model&>().fast_sum_report())>>
+struct has_fast_sums<Model, std::void_t<decltype(std::declval<const Model&>().fast_sum_report())>>
     : std::true_type {};
 
 // Models with open faces count the particles that left through them.
 template <class Model, class = void>
 struct has_open_faces : std::false_type {};
 template <class Model>
-struct has_open_faces<Model,
-                      std::void_t<decltype(std::declval<const Model&>().boundary_report())>>
+struct has_open_faces<Model, std::void_t<decltype(std::declval<const Model&>().boundary_report())>>
     : std::true_type {};
 
 // Models with `output SET: ...` say which sets and variables VTK frames hold.
@@ -165,14 +164,6 @@ template <class Model>
 struct has_time<Model, std::void_t<decltype(std::declval<const Model&>().time())>>
     : std::true_type {};
 
-inline std::string usage_line(const std::string& model) {
-  return "usage: " + model +
-         " [--steps K] [--seed S] [--set NAME=VALUE]... [--input [SET=]FILE.csv]..."
-         " [--output FILE.csv] [--vtk PREFIX] [--every M] [--check-every M]"
-         " [--last-finite FILE.csv] [--log FILE.csv] [--log-every M] [--log-file-every M]"
-         " [--stage NAME[:K]]... [--matrix-market PREFIX] [--check-accuracy] [--quiet] [--help]";
-}
-
 template <class Model>
 std::vector<std::string> set_names(const Model& model) {
   std::vector<std::string> names;
@@ -180,197 +171,50 @@ std::vector<std::string> set_names(const Model& model) {
   return names;
 }
 
-// "out.csv" for set P -> "out_P.csv", when a model has several sets.
-inline std::string path_for_set(const std::string& path, const std::string& set) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + "_" + set + p.extension().string())).string();
-}
-
-template <class Int>
-Int parse_count(const std::string& option, const std::string& text) {
-  Int value{};
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  if (error != std::errc() || stop != end || text[0] == '-')
-    throw UsageError(option + " expects a non-negative integer, got '" + text + "'");
-  return value;
-}
-
-inline void require_directory_of(const std::string& option, const std::string& path) {
-  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
-  if (!directory.empty() && !std::filesystem::is_directory(directory))
-    throw UsageError(option + " " + path + ": directory '" + directory.string() +
-                     "' does not exist");
-}
+// What the options and --help need to know of a model, gathered once from it,
+// so that parsing them and writing the help are compiled once (driver.cpp).
+struct ModelFacts {
+  std::string name;
+  std::vector<std::string> sets;
+  std::vector<std::string> stages;       // named stages, if any
+  std::vector<std::string> log_columns;  // observables logged, if any
+  std::int64_t log_every = 0;            // the model's progress interval, when it logs
+  bool logs = false, solves = false, fast_sums = false;
+  std::vector<ParamInfo> params;
+  // Model::set_param: checks and sets a parameter (--set).
+  std::function<void(const std::string& name, const std::string& value)> set_param;
+};
 
 template <class Model>
-DriverOptions parse_driver_options(Model& model, const std::vector<std::string>& args) {
-  const std::vector<std::string> sets = set_names(model);
-  DriverOptions options;
-  for (std::size_t a = 0; a < args.size(); ++a) {
-    std::string option = args[a];
-    std::optional<std::string> attached;  // the value of "--option=value"
-    if (const auto equals = option.find('=');
-        option.rfind("--", 0) == 0 && equals != std::string::npos) {
-      attached = option.substr(equals + 1);
-      option.resize(equals);
-    }
-    // A following "--x" is taken for a forgotten value, not as the value.
-    const auto value = [&]() -> std::string {
-      if (attached) {
-        if (attached->empty()) throw UsageError("option " + option + " needs a value");
-        return *attached;
-      }
-      if (a + 1 == args.size() || args[a + 1].empty() || args[a + 1].rfind("--", 0) == 0)
-        throw UsageError("option " + option + " needs a value");
-      return args[++a];
-    };
-
-    if (option == "--quiet") {
-      if (attached) throw UsageError("option --quiet takes no value");
-      options.quiet = true;
-    } else if (option == "--steps") {
-      options.steps = parse_count<std::int64_t>(option, value());
-    } else if (option == "--seed") {
-      options.seed = parse_count<std::uint64_t>(option, value());
-    } else if (option == "--every") {
-      options.every = parse_count<std::int64_t>(option, value());
-      if (options.every == std::int64_t{0})
-        throw UsageError("--every must be at least 1 (step 0 is always written)");
-    } else if (option == "--check-every") {
-      options.check_every = parse_count<std::int64_t>(option, value());
-    } else if (option == "--last-finite") {
-      options.last_finite = value();
-      require_directory_of(option, options.last_finite);
-    } else if (option == "--set") {
-      const std::string assignment = value();
-      const auto equals = assignment.find('=');
-      if (equals == std::string::npos || equals == 0)
-        throw UsageError("--set expects NAME=VALUE, got '" + assignment + "'");
-      model.set_param(assignment.substr(0, equals), assignment.substr(equals + 1));
-    } else if (option == "--input") {
-      const std::string spec = value();
-      const auto equals = spec.find('=');
-      std::string set = sets.size() == 1 ? sets[0] : "", file = spec;
-      if (equals != std::string::npos) {
-        set = spec.substr(0, equals);
-        file = spec.substr(equals + 1);
-        if (std::find(sets.begin(), sets.end(), set) == sets.end())
-          throw UsageError("--input " + spec + ": the model has no set '" + set +
-                           "' (sets: " + join(sets) + ")");
-      } else if (sets.size() != 1) {
-        throw UsageError("--input " + spec + ": say which set the file is for, as --input SET=" +
-                         spec + " (sets: " + join(sets) + ")");
-      }
-      if (file.empty()) throw UsageError("--input " + spec + ": no file name");
-      for (const auto& [other, ignored] : options.inputs)
-        if (other == set) throw UsageError("--input given twice for set '" + set + "'");
-      options.inputs.emplace_back(set, file);
-    } else if (option == "--output") {
-      options.output = value();
-      require_directory_of(option, options.output);
-    } else if (option == "--log" || option == "--log-every" || option == "--log-file-every") {
-      if constexpr (!logs_observables<Model>::value)
-        throw UsageError("option " + option + ": model " + std::string(Model::model_name) +
-                         " logs no observables (its .part file has no 'output' line)");
-      if (option == "--log") {
-        options.log = value();
-        require_directory_of(option, options.log);
-      } else if (option == "--log-every") {
-        options.log_every = parse_count<std::int64_t>(option, value());
-      } else {
-        options.log_file_every = parse_count<std::int64_t>(option, value());
-        if (options.log_file_every == 0)
-          throw UsageError("--log-file-every must be at least 1 (step 0 is always written)");
-      }
-    } else if (option == "--stage") {
-      const std::string spec = value();
-      const auto colon = spec.find(':');
-      const std::string name = spec.substr(0, colon);
-      std::vector<std::string> known;
-      if constexpr (has_stages<Model>::value) known = Model::stage_names();
-      if (std::find(known.begin(), known.end(), name) == known.end())
-        throw UsageError("--stage " + spec + ": model " + std::string(Model::model_name) +
-                         (known.empty()
-                              ? " has no named stage"
-                              : " has no stage '" + name + "' (stages: " + join(known) + ")"));
-      options.stages.emplace_back(name,
-                                  colon == std::string::npos
-                                      ? 1
-                                      : parse_count<std::int64_t>(option, spec.substr(colon + 1)));
-    } else if (option == "--matrix-market") {
-      if constexpr (!has_solves<Model>::value)
-        throw UsageError("option --matrix-market: model " + std::string(Model::model_name) +
-                         " has no solve statement");
-      options.matrix_market = value();
-      require_directory_of(option, options.matrix_market);
-    } else if (option == "--check-accuracy") {
-      if constexpr (!has_fast_sums<Model>::value)
-        throw UsageError("option --check-accuracy: model " + std::string(Model::model_name) +
-                         " has no fast sum (dense = fmm)");
-      if (attached) throw UsageError("option --check-accuracy takes no value");
-      options.check_accuracy = true;
-    } else if (option == "--vtk") {
-      options.vtk_prefix = value();
-      require_directory_of(option, options.vtk_prefix);
-    } else if (option.rfind("-", 0) == 0) {
-      throw UsageError("unknown option '" + args[a] + "'");
-    } else {
-      throw UsageError("unexpected argument '" + args[a] + "' (options start with --)");
-    }
+ModelFacts facts_of(Model& model) {
+  ModelFacts facts;
+  facts.name = Model::model_name;
+  facts.sets = set_names(model);
+  if constexpr (has_stages<Model>::value) facts.stages = Model::stage_names();
+  if constexpr (logs_observables<Model>::value) {
+    facts.logs = true;
+    facts.log_columns = Model::log_columns();
+    facts.log_every = model.log_every();
   }
-  return options;
+  facts.solves = has_solves<Model>::value;
+  facts.fast_sums = has_fast_sums<Model>::value;
+  facts.params = Model::param_info();
+  facts.set_param = [&model](const std::string& name, const std::string& value) {
+    model.set_param(name, value);
+  };
+  return facts;
 }
 
-template <class Model>
-void print_help(std::ostream& out, const Model& model) {
-  const std::string name = Model::model_name;
-  std::ostringstream text;
-  text << usage_line(name) << "\n\n"
-       << "Runs the partc model " << name << " (particle sets: " << join(set_names(model))
-       << ").\n\n"
-       << "  --steps K            number of steps (default 10)\n"
-       << "  --seed S             random seed (default 0)\n"
-       << "  --set NAME=VALUE     set a parameter; repeatable\n"
-       << "  --input FILE.csv     start from a file instead of init; with several sets\n"
-       << "                       --input SET=FILE.csv, once per set (the others start empty)\n"
-       << "  --output FILE.csv    write the final state (FILE_SET.csv with several sets)\n"
-       << "  --vtk PREFIX         write ParaView series PREFIX_SET.pvd + PREFIX_SET_NNNNNN.vtu\n"
-       << "  --every M            VTK every M steps (default: the model's output interval, else 1;\n"
-       << "                       step 0 is always written)\n"
-       << "  --check-every M      NaN/Inf check every M steps (default 1; 0 turns it off)\n"
-       << "  --last-finite F.csv  on a blow-up, write the last state found finite to F.csv\n"
-       << "                       (default OUTPUT.last-finite.csv, else " << name
-       << ".last-finite.csv)\n";
-  if constexpr (has_stages<Model>::value)
-    text << "  --stage NAME[:K]     run a named stage K times (default 1) after init, before\n"
-         << "                       the steps; repeatable, in order (stages: "
-         << join(Model::stage_names()) << ")\n";
-  if constexpr (has_solves<Model>::value)
-    text << "  --matrix-market P    write each solve's matrix and right side to P_NAME.mtx,\n"
-         << "                       P_NAME_rhs.mtx (Matrix Market)\n";
-  if constexpr (has_fast_sums<Model>::value)
-    text << "  --check-accuracy     check every fast sum against the direct sum on a sample of\n"
-         << "                       targets; an error above its tolerance stops the run (exit 3)\n";
-  if constexpr (logs_observables<Model>::value)
-    text << "  --log FILE.csv       write the logged observables every step (columns: "
-         << join(Model::log_columns()) << ")\n"
-         << "  --log-every M        a progress row every M steps (default " << model.log_every()
-         << "; 0: none)\n"
-         << "  --log-file-every M   a row in --log's file every M steps (default 1; the first and\n"
-         << "                       the last always)\n";
-  text << "  --quiet              no summary at the end\n"
-       << "  --help               this text\n\n"
-       << "Parameters:\n";
-  const std::vector<ParamInfo> params = Model::param_info();
-  if (params.empty()) text << "  (none)\n";
-  for (const ParamInfo& param : params)
-    text << "  " << std::left << std::setw(18) << param.name << " " << std::setw(6) << param.type
-         << " default " << param.default_value << "\n";
-  text << "\nExit status: 0 success, 1 bad input file or I/O failure, 2 bad arguments,\n"
-       << "3 numerical blow-up (NaN or Inf in a variable).\n";
-  out << text.str();
-}
+std::string usage_line(const std::string& model);
+
+// "out.csv" for set P -> "out_P.csv", when a model has several sets.
+std::string path_for_set(const std::string& path, const std::string& set);
+
+// The command line (the arguments after the program's name), every value
+// checked (the parameters' through facts.set_param, which sets them).
+DriverOptions parse_driver_options(const ModelFacts& facts, const std::vector<std::string>& args);
+
+void print_help(std::ostream& out, const ModelFacts& facts);
 
 // Per set: particle count, then min/mean/max of each variable (of |v| for a vec).
 template <class Model>
@@ -422,21 +266,57 @@ void print_summary(std::ostream& out, const Model& model, const DriverOptions& o
 
 // Where the last finite state goes: --last-finite, else beside --output, else
 // here, named after the model.
-template <class Model>
-std::string last_finite_path(const DriverOptions& options) {
-  if (!options.last_finite.empty()) return options.last_finite;
-  if (options.output.empty()) return std::string(Model::model_name) + ".last-finite.csv";
-  const std::filesystem::path p(options.output);
-  return (p.parent_path() / (p.stem().string() + ".last-finite" + p.extension().string()))
-      .string();
-}
+std::string last_finite_path(const std::string& model, const DriverOptions& options);
+
+// When a run writes, logs and checks, the same for every model: run_model
+// asks it at each step. Frames are due for a set every --every steps, else
+// its own interval; a step is observed when something reads the state after
+// it (a frame, a log row, or it is the last).
+class RunPlan {
+ public:
+  // frames: one per set; named: the model names their variables (`output
+  // SET: ...`), else frames hold every variable.
+  RunPlan(const DriverOptions& options, std::vector<FrameSpec> frames, bool named,
+          std::optional<ThermoLog> log);
+
+  bool observed(std::int64_t step) const;
+  // Whether the state of `step` is checked for NaN and Inf: every
+  // --check-every steps, and whenever a frame is written (unless checks are off).
+  bool check_due(std::int64_t step) const;
+  void found_finite(std::int64_t step) { clean_ = step; }
+  // In a handler of the NumericalError e of the check at `step`: rethrows it,
+  // or, when the last clean check was more than a step before, an error that
+  // says since when the value may be there.
+  [[noreturn]] void rethrow_with_last_clean(const NumericalError& e, std::int64_t step) const;
+
+  // The series the set's frame of `step` goes to, or null when none is due.
+  VtkSeries* frame_due(const std::string& set, std::int64_t step);
+  // The variables the set's frames hold (null: all of them).
+  const std::vector<std::string>* frame_variables(const std::string& set) const;
+
+  void log_row(std::int64_t step, const std::vector<double>& values) { log_->row(step, values); }
+  void close_log() {
+    if (log_) log_->close();
+  }
+
+ private:
+  bool any_frame_due(std::int64_t step) const;
+  std::int64_t every(const FrameSpec& frame) const;
+
+  const DriverOptions& options_;
+  std::map<std::string, FrameSpec> frames_;
+  bool named_;
+  std::map<std::string, VtkSeries> series_;  // empty without --vtk
+  std::optional<ThermoLog> log_;
+  std::int64_t clean_ = -1;  // the last step found finite
+};
 
 // Writes the kept state after a blow-up; returns what to add to its message.
 template <class Model>
 std::string keep_last_finite(const LastFinite& kept, const Model& model,
                              const DriverOptions& options) {
   if (kept.empty()) return "no state was found finite before it, so none is written";
-  const std::string path = last_finite_path<Model>(options);
+  const std::string path = last_finite_path(Model::model_name, options);
   const bool several = set_names(model).size() > 1;
   try {
     const std::vector<std::string> paths = kept.write(
@@ -465,23 +345,12 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
 
   const std::vector<std::string> sets = set_names(model);
   // Per set: its frames' variables (all of them without `output SET: ...`).
-  std::map<std::string, FrameSpec> frames;
+  std::vector<FrameSpec> frames;
   if constexpr (has_frames<Model>::value) {
-    for (FrameSpec& f : model.frames()) frames.emplace(f.set, std::move(f));
+    frames = model.frames();
   } else {
-    for (const auto& set : sets) frames.emplace(set, FrameSpec{set, {}, 1});
+    for (const auto& set : sets) frames.push_back(FrameSpec{set, {}, 1});
   }
-  std::map<std::string, VtkSeries> series;
-  if (!options.vtk_prefix.empty())
-    for (const auto& [set, unused] : frames) series.emplace(set, options.vtk_prefix + "_" + set);
-  const auto due = [](std::int64_t step, std::int64_t every) {
-    return every > 0 && step % every == 0;
-  };
-  const auto frame_due = [&](std::int64_t step) {
-    return std::any_of(series.begin(), series.end(), [&](const auto& s) {
-      return due(step, options.every.value_or(frames.at(s.first).every));
-    });
-  };
 
   if constexpr (has_stages<Model>::value)
     for (const auto& [name, runs] : options.stages)
@@ -491,28 +360,20 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
   if constexpr (logs_observables<Model>::value)
     log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
                 options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
-  // Whether the state after a step is read: logged, written as a frame, or the run's last.
-  const auto observed = [&](std::int64_t step) {
-    return step == options.steps || frame_due(step) || (log && log->uses(step));
-  };
+  RunPlan plan(options, std::move(frames), has_frames<Model>::value, std::move(log));
 
   // Step 0 (the state after init or load) is checked and written like any other.
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
-  std::int64_t clean = -1;  // the last step found finite
   [[maybe_unused]] std::chrono::duration<double> stepping{0};  // in step(), for --profile
   LastFinite kept(model);
   const auto check = [&](std::int64_t step) {
     try {
       model.check_finite();
     } catch (const NumericalError& e) {
-      if (clean < 0 || step - clean <= 1) throw;
-      throw NumericalError(std::string(e.what()) + " (checked every " +
-                           std::to_string(options.check_every) + " steps: it arose after step " +
-                           std::to_string(clean) + ", the last found finite; --check-every 1 " +
-                           "finds the step)");
+      plan.rethrow_with_last_clean(e, step);
     }
-    clean = step;
+    plan.found_finite(step);
     kept.take(model, step);
   };
   try {
@@ -520,25 +381,22 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
       if (k > 0) {
         if constexpr (has_profile<Model>::value) {
           const auto before = std::chrono::steady_clock::now();
-          take_step(model, observed(k));
+          take_step(model, plan.observed(k));
           stepping += std::chrono::steady_clock::now() - before;
         } else {
-          take_step(model, observed(k));
+          take_step(model, plan.observed(k));
         }
       }
       const std::int64_t step = model.step_count();
-      checked = due(step, options.check_every) || (frame_due(step) && options.check_every > 0);
+      checked = plan.check_due(step);
       if (checked) check(step);
       if constexpr (logs_observables<Model>::value)
-        if (observed(k)) log->row(step, model.log_row());
+        if (plan.observed(k)) plan.log_row(step, model.log_row());
       double time = static_cast<double>(step);
       if constexpr (has_time<Model>::value) time = model.time();
       model.for_each_set([&](const char* name, const auto& set) {
-        const auto s = series.find(name);
-        if (s == series.end()) return;
-        const FrameSpec& f = frames.at(name);
-        if (due(step, options.every.value_or(f.every)))
-          s->second.write(set, step, time, has_frames<Model>::value ? &f.variables : nullptr);
+        if (VtkSeries* series = plan.frame_due(name, step))
+          series->write(set, step, time, plan.frame_variables(name));
       });
     }
     if (options.check_every > 0 && !checked) check(model.step_count());
@@ -546,7 +404,7 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
     throw NumericalError(std::string(e.what()) + "\n" + Model::model_name +
                          ": note: " + keep_last_finite(kept, model, options));
   }
-  if (log) log->close();
+  plan.close_log();
 
   if (!options.output.empty())
     model.for_each_set([&](const char* name, const auto& set) {
@@ -567,34 +425,26 @@ void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
 
 }  // namespace detail
 
+namespace detail {
+
+// run(), with the errors it throws written to err and mapped to the exit
+// status (see the top of this file); 0 when it returns.
+int exit_status_of(const std::string& model, std::ostream& err, const std::function<void()>& run);
+
+}  // namespace detail
+
 // The whole program; out receives --help and the summary, err the errors.
 template <class Model>
 int run_driver(int argc, char** argv, std::ostream& out, std::ostream& err) {
-  const std::string name = Model::model_name;
-  std::vector<std::string> args;
-  for (int a = 1; a < argc; ++a) args.emplace_back(argv[a]);
-  try {
+  const std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
+  return detail::exit_status_of(Model::model_name, err, [&] {
     Model model;
-    if (std::find(args.begin(), args.end(), "--help") != args.end()) {
-      detail::print_help(out, model);
-      return 0;
-    }
-    const detail::DriverOptions options = detail::parse_driver_options(model, args);
+    if (std::find(args.begin(), args.end(), "--help") != args.end())
+      return detail::print_help(out, detail::facts_of(model));
+    const detail::DriverOptions options =
+        detail::parse_driver_options(detail::facts_of(model), args);
     detail::run_model(model, options, out);
-    return 0;
-  } catch (const UsageError& e) {
-    err << name << ": error: " << e.what() << "\n" << detail::usage_line(name) << "\n";
-    return 2;
-  } catch (const InputError& e) {
-    err << e.what() << "\n";  // already "file:line:col: error: ..."
-    return 1;
-  } catch (const NumericalError& e) {
-    err << name << ": error: " << e.what() << "\n";
-    return 3;
-  } catch (const std::exception& e) {
-    err << name << ": error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 template <class Model>

@@ -8,13 +8,13 @@
 //
 // The driver maps them to exit codes 1, 2 and 3. Surprise: a particle
 // variable's NumericalError message ends with the set name in parentheses,
-// because two sets may both have a variable 'v'.
+// because two sets may both have a variable 'v'. The messages are composed
+// in the runtime library (errors.cpp).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -32,14 +32,7 @@ struct InputError : std::runtime_error {
 
  private:
   static std::string located(const std::string& path, std::size_t line, std::size_t column,
-                             const std::string& line_text, const std::string& message) {
-    std::string caret;
-    for (std::size_t k = 0; k + 1 < column && k < line_text.size(); ++k)
-      caret += line_text[k] == '\t' ? '\t' : ' ';
-    caret += '^';
-    return path + ":" + std::to_string(line) + ":" + std::to_string(column) +
-           ": error: " + message + "\n" + line_text + "\n" + caret;
-  }
+                             const std::string& line_text, const std::string& message);
 };
 
 struct UsageError : std::runtime_error {
@@ -70,17 +63,7 @@ struct NumericalError : std::runtime_error {
 
  private:
   static std::string describe(const std::string& set, const std::string& variable, std::int64_t id,
-                              std::int64_t step, double value) {
-    std::ostringstream text;
-    text << "numerical blow-up: variable '" << variable << "' of particle id " << id << " is ";
-    // A NaN's sign bit is meaningless; libstdc++ would print "-nan".
-    if (std::isnan(value))
-      text << "nan";
-    else
-      text << value;
-    text << " at step " << step << " (set " << set << ")";
-    return text.str();
-  }
+                              std::int64_t step, double value);
 };
 
 }  // namespace partc

@@ -59,6 +59,7 @@
 #include <vector>
 
 #include "partc/domain.hpp"
+#include "partc/search_instances.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
@@ -294,5 +295,8 @@ class KdTree {
   std::vector<std::size_t> order_;
   std::vector<Entry> entries_;  // build scratch, kept to reuse its memory
 };
+
+// Compiled once, in the runtime library (search_instances.hpp).
+PARTC_SEARCH_INSTANCES(extern template, KdTree);
 
 }  // namespace partc

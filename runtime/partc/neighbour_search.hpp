@@ -179,10 +179,9 @@ class NeighbourSearch {
   // so two slabs still never touch one particle.
   template <class F>
   void for_each_pair(F&& f) const {
-    if (!sorted_apart()) return sorted_pairs(f);
-    sorted_pairs([&](std::size_t i, const auto& pairs) {
-      f(order_[i], [&](auto&& g) { pairs(in_set_order(g)); });
-    });
+    if (kind_ != Kind::cell_list) return pairs_off_cells(f);
+    if (!sorted_apart()) return cell_list_.for_each_pair(f);
+    cell_list_.for_each_pair(set_order_pairs(f));
   }
 
   // for_each_pair's pairs packed for vector arithmetic (simd/pair_batches.hpp):
@@ -198,15 +197,15 @@ class NeighbourSearch {
         batches_.build(cell_list_, size_);
         batched_build_ = build_count_;
       }
-      if (!sorted_apart()) return batches_.for_each_pair(cell_list_, with_self, f);
+      // One walk for both orders (the test is per batch, not per pair).
       return batches_.for_each_pair(cell_list_, with_self, [&](simd::PairBatch<D>& batch) {
-        batch.renumber(order_);
+        if (sorted_apart()) batch.renumber(order_);
         f(batch);
       });
     }
     simd::PairBatch<D>& batch = serial_batch_;
     batch.clear();
-    for_each_pair([&](std::size_t i, const auto& pairs) {
+    pairs_off_cells([&](std::size_t i, const auto& pairs) {
       pairs([&](std::size_t j, const Vec<D>& dx) {
         // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
         if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
@@ -297,16 +296,34 @@ class NeighbourSearch {
     });
   }
 
+  // for_each_pair on the brute-force and k-d tree paths: a kernel walked only
+  // there (for_each_pair_batch's serial batches) is compiled for those walks
+  // alone, not also for the cell list's.
   template <class F>
-  void sorted_pairs(F&& f) const {
-    if (kind_ == Kind::cell_list) return cell_list_.for_each_pair(f);
+  void pairs_off_cells(F&& f) const {
     if (kind_ == Kind::brute_force) return brute_force_.for_each_pair(f);
+    if (!sorted_apart()) return kd_tree_pairs(f);
+    kd_tree_pairs(set_order_pairs(f));
+  }
+
+  template <class F>
+  void kd_tree_pairs(F&& f) const {
     for (std::size_t k = 0; k < size_; ++k)
       if (is_finite(kd_tree_.point(k)))
         f(k, [&](auto&& g) {
           g(k, Vec<D>::zero());
-          sorted_near_after(k, g);
+          kd_tree_.for_each_near(kd_tree_.point(k), [&](std::size_t j, const Vec<D>& dx) {
+            if (j > k) g(j, dx);
+          });
         });
+  }
+
+  // A pair walk's f(i, pairs), given the set's indices of i and of each j.
+  template <class F>
+  auto set_order_pairs(F& f) const {
+    return [this, &f](std::size_t i, const auto& pairs) {
+      f(order_[i], [&](auto&& g) { pairs(in_set_order(g)); });
+    };
   }
 
   // Order::keep on a path that sorts (brute force never does): indices differ.

@@ -33,6 +33,7 @@
 #include "partc/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/parallel.hpp"
+#include "partc/search_instances.hpp"
 #include "partc/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
@@ -310,5 +311,8 @@ class OrderedCellList {
   static constexpr std::size_t cells_per_block = 4096;
   SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
 };
+
+// Compiled once, in the runtime library (search_instances.hpp).
+PARTC_SEARCH_INSTANCES(extern template, OrderedCellList);
 
 }  // namespace partc

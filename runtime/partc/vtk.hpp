@@ -22,9 +22,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <ostream>
 #include <string>
 #include <type_traits>
@@ -39,30 +37,9 @@ namespace partc {
 
 namespace detail {
 
-inline std::string xml_escape(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
+// text with & < > " written as XML entities.
+std::string xml_escape(const std::string& text);
 
-// The DataArray type of a variable stored as S: a Vec<D, T> is T's.
 template <class S>
 constexpr const char* vtk_type_name() {
   using Component = typename StorageTraits<S>::component_type;
@@ -148,8 +125,8 @@ void write_vtu(const std::string& path, const Set& set,
     using Position = typename Set::position_type;
     detail::write_vtk_array(out, detail::vtk_type_name<Position>(), "Points", 3, n,
                             [&](std::string& line, std::size_t r) {
-      detail::append_vtk_value(line, set.positions()[order[r]], 3);
-    });
+                              detail::append_vtk_value(line, set.positions()[order[r]], 3);
+                            });
     out << "      </Points>\n"
         << "      <Cells>\n";
     // One VTK_VERTEX (type 1) cell per point: ParaView draws points only as cells.
@@ -176,28 +153,15 @@ class VtkSeries {
   template <class Set>
   void write(const Set& set, std::int64_t step, double time,
              const std::vector<std::string>* variables = nullptr) {
-    char number[24];
-    std::snprintf(number, sizeof number, "%06lld", static_cast<long long>(step));
-    const std::string path = prefix_ + "_" + number + ".vtu";
-    write_vtu(path, set, variables);
-    // ParaView resolves the file names of a .pvd relative to the .pvd itself.
-    frames_.emplace_back(time, std::filesystem::path(path).filename().string());
-    detail::write_file_atomically(prefix_ + ".pvd", [&](std::ostream& out) {
-      out << "<?xml version=\"1.0\"?>\n"
-          << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-          << "  <Collection>\n";
-      for (const auto& [frame_time, file] : frames_) {
-        std::string timestep;
-        detail::append_number(timestep, frame_time);
-        out << "    <DataSet timestep=\"" << timestep << "\" part=\"0\" file=\""
-            << detail::xml_escape(file) << "\"/>\n";
-      }
-      out << "  </Collection>\n"
-          << "</VTKFile>\n";
-    });
+    write_vtu(frame_path(step), set, variables);
+    add_frame(step, time);
   }
 
  private:
+  std::string frame_path(std::int64_t step) const;
+  // Lists the frame of `step` in prefix.pvd, after the earlier ones.
+  void add_frame(std::int64_t step, double time);
+
   std::string prefix_;
   std::vector<std::pair<double, std::string>> frames_;  // (time, .vtu file name)
 };

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -22,6 +23,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unsupported/Eigen/IterativeSolvers>
 #include <vector>
 
 #include "partc/errors.hpp"
