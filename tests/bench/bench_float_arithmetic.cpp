@@ -30,7 +30,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,6 +40,7 @@
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
+#include "seed_points.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -48,13 +48,7 @@ namespace {
 using Vec2 = partc::Vec<2>;
 constexpr double force_strength = 1e-3;  // c
 
-std::vector<Vec2> uniform_points(std::size_t n) {
-  std::mt19937_64 random(2017);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<Vec2> p(n);
-  for (auto& x : p) x = Vec2{{u(random), u(random)}};
-  return p;
-}
+using bench::uniform_points;
 
 template <class Model>
 void load_points(Model& model, const std::vector<Vec2>& points, double rc) {

@@ -24,7 +24,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +32,7 @@
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
+#include "seed_points.hpp"
 #include "timing.hpp"
 #ifdef PARTC_BENCH_FLOOR
 #include "floor_kernels.hpp"
@@ -45,13 +45,7 @@ using Vec2 = Vec<2>;
 namespace simd = partc::simd;
 namespace hn = partc::simd::hn;
 
-std::vector<Vec2> uniform_points(std::size_t n) {
-  std::mt19937_64 rng(2017);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<Vec2> p(n);
-  for (auto& x : p) x = Vec2{{u(rng), u(rng)}};
-  return p;
-}
+using bench::uniform_points;
 
 // The scalar pair walk, term as the generated code writes it.
 void sum_scalar(const partc::OrderedCellList<2>& cells, double rc, std::vector<Vec2>& sum) {
