@@ -151,10 +151,7 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
     const double err_double = relative_l2(velocities(in_double), reference);
     const double err_float = relative_l2(velocities(in_float), reference);
 
-    partc::Domain<2> domain;
-    domain.lo = Vec2{{0, 0}};
-    domain.hi = Vec2{{1, 1}};
-    domain.periodic = {true, true};
+    const partc::Domain<2> domain = bench::periodic_unit_square();
     partc::OrderedCellList<2> cells;
     cells.build(domain, rc, points);
     partc::simd::PairBatches<2> batches;

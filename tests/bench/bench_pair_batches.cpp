@@ -161,10 +161,7 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
   for (const std::size_t n : sizes) {
     const double rc = std::sqrt(3.0 / static_cast<double>(n));
     const std::vector<Vec2> points = uniform_points(n);
-    partc::Domain<2> domain;
-    domain.lo = Vec2{{0, 0}};
-    domain.hi = Vec2{{1, 1}};
-    domain.periodic = {true, true};
+    const partc::Domain<2> domain = bench::periodic_unit_square();
     partc::OrderedCellList<2> cells;
     cells.build(domain, rc, points);
     simd::PairBatches<2> batches;
