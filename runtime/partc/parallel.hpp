@@ -63,10 +63,20 @@ constexpr std::size_t chunk_count(std::size_t n, LoopWork work, unsigned threads
 
 }  // namespace detail
 
+// How many threads partc's loops may use (1 without OpenMP): for sizing the
+// blocks of a loop whose result does not depend on how it is cut.
+inline int max_threads() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
 template <class Body>
 void parallel_for(std::size_t n, LoopWork work, Body&& body) {
 #if defined(_OPENMP)
-  const int threads = n >= min_parallel(work) ? omp_get_max_threads() : 1;
+  const int threads = n >= min_parallel(work) ? max_threads() : 1;
   if (threads > 1) {
     const std::size_t chunks =
         std::min(detail::chunk_count(n, work, static_cast<unsigned>(threads)),

@@ -311,6 +311,31 @@ TEST_CASE("cell sizes follow L / floor(L / radius) and the count is capped", "[s
   CHECK(ordered.cell_count() == 4);
 }
 
+TEST_CASE("the ordered cell list sorts stably by cell on 1 and 2 threads", "[search]") {
+  // Enough points for the counting sort to run in blocks, and a NaN point;
+  // the reference: std::stable_sort of the indices by each point's cell.
+  const Domain<2> box = make_domain<2>(Periodicity::all, true);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);  // beyond the box too: wrapped
+  std::vector<Vec<2>> points(40000);
+  for (auto& p : points) p = Vec<2>{{u(rng), u(rng)}};
+  points[123] = Vec<2>{{std::nan(""), 0.5}};
+  const double radius = 0.02;
+  const partc::CellGrid<2> grid(box, radius, points.size());
+  std::vector<std::size_t> expected(points.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) expected[i] = i;
+  std::stable_sort(expected.begin(), expected.end(), [&](std::size_t a, std::size_t b) {
+    return grid.cell_of(box.wrap(points[a])) < grid.cell_of(box.wrap(points[b]));
+  });
+  for (int threads : {1, 2}) {
+    INFO("threads " << threads);
+    partc::OrderedCellList<2> cells;
+    partc::with_threads(threads, [&] { cells.build(box, radius, points); });
+    REQUIRE(cells.cell_count() < points.size());
+    CHECK(cells.order() == expected);
+  }
+}
+
 TEST_CASE("the facade picks brute force when queries would examine nearly every point",
           "[search]") {
   const Domain<2> box = make_domain<2>(Periodicity::all, true);  // L = 2
