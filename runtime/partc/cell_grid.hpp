@@ -34,6 +34,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -80,6 +81,52 @@ class CellGrid {
       fraction *= has_length(L) ? std::min(n, 1.0 + 2.0 * reach_ * inv_width_[k]) / n : 1.0;
     }
     return fraction;
+  }
+
+  // Whether every cell is wider than the reach, by more than rounding, and at
+  // most `widest` reaches wide (a dimension of one cell without a length
+  // does not count): then the runs of a cell's box (cell_box) take 3 cells
+  // per dimension, as a box of its points does unless they all keep clear of
+  // a face by a reach.
+  bool cells_fit_reach(double widest) const {
+    for (int k = 0; k < D; ++k) {
+      if (inv_width_[k] == 0.0) continue;
+      const double width = 1.0 / inv_width_[k];
+      if (!(width > reach_ + 4 * box_margin(k) && width <= widest * reach_)) return false;
+    }
+    return true;
+  }
+
+  // A box [lo, hi] holding every point cell_of puts in `cell`, whatever the
+  // rounding: the cell's faces moved out by box_margin, and unbounded on the
+  // outer side of an edge cell in a dimension without periodicity (where
+  // cell_of clamps) or a length.
+  void cell_box(std::size_t cell, Vec<D>& lo, Vec<D>& hi) const {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < D; ++k) {
+      const std::size_t c = cell / stride_[k] % n_[k];
+      if (inv_width_[k] == 0.0) {
+        lo[k] = -infinity;
+        hi[k] = infinity;
+        continue;
+      }
+      const double width = 1.0 / inv_width_[k];
+      const bool clamped = !domain_.periodic[k];
+      lo[k] = clamped && c == 0 ? -infinity
+                                : domain_.lo[k] + static_cast<double>(c) * width - box_margin(k);
+      hi[k] = clamped && c + 1 == n_[k]
+                  ? infinity
+                  : domain_.lo[k] + static_cast<double>(c + 1) * width + box_margin(k);
+    }
+  }
+
+  // Whether `other` has the same cells, reach and periodicity.
+  bool same_cells(const CellGrid& other) const {
+    for (int k = 0; k < D; ++k)
+      if (domain_.lo[k] != other.domain_.lo[k] || domain_.hi[k] != other.domain_.hi[k] ||
+          domain_.periodic[k] != other.domain_.periodic[k] || n_[k] != other.n_[k])
+        return false;
+    return reach_ == other.reach_;
   }
 
   // True when every periodic dimension has >= 3 cells: no pair needs minimum_image.
@@ -219,6 +266,15 @@ class CellGrid {
     if (!(t > 0.0)) return 0;
     if (!(t < last_[k])) return n_[k] - 1;
     return static_cast<std::size_t>(static_cast<std::int64_t>(t));  // signed: one instruction
+  }
+
+  // More than the rounding of a cell's faces and of coord in dimension k: a
+  // few ulps of the coordinates' magnitude, and 1e-12 of a cell.
+  double box_margin(int k) const {
+    const double L = domain_.hi[k] - domain_.lo[k];
+    return 8 * std::numeric_limits<double>::epsilon() *
+               (std::abs(domain_.lo[k]) + std::abs(domain_.hi[k]) + L) +
+           1e-12 * L / static_cast<double>(n_[k]);
   }
 
   // The cells within reach of [lo + shift, hi + shift] in dimension k.

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -138,8 +139,8 @@ class OrderedCellList {
     if (!grid_.shifts_suffice()) return false;
     const std::size_t cell = cell_of_sorted_[k];
     for (std::size_t r = run_start_[cell]; r != run_start_[cell + 1]; ++r) {
-      const std::size_t first = std::max(runs_[r].first, from);
-      const std::size_t stop = std::min(runs_[r].stop, until);
+      const std::size_t first = std::max(start_[runs_[r].first_cell], from);
+      const std::size_t stop = std::min(start_[runs_[r].stop_cell], until);
       if (first < stop) run(first, stop, points_[k] + runs_[r].shift);
     }
     return true;
@@ -205,9 +206,10 @@ class OrderedCellList {
   const Vec<D>& point(std::size_t k) const { return points_[k]; }
 
  private:
-  // Points first .. stop-1, seen from a query q as neighbours of q + shift.
+  // The points of cells first_cell .. stop_cell-1, seen from a query q as
+  // neighbours of q + shift.
   struct Run {
-    std::size_t first, stop;
+    std::size_t first_cell, stop_cell;
     Vec<D> shift;
   };
 
@@ -246,25 +248,76 @@ class OrderedCellList {
     });
   }
 
-  // The runs near each occupied cell, from the bounding box of its points.
-  // (In exact mode member queries take the per-point path: no table.)
-  // Returns whether every run stays within its cell's plane and the next,
-  // or, from plane 0, reaches only the last plane (across the periodic edge).
+  // The runs near each cell, for the member queries (none in exact mode,
+  // where they take the per-point path), and examined_. Returns whether every
+  // run stays within its cell's plane and the next, or, from plane 0, reaches
+  // only the last plane (across the periodic edge).
+  //
+  // Where every cell is at most 1.5 reaches wide, the box of a cell's points
+  // seldom trims its runs (with cells 1.003 reaches wide, as md's at N = 1e5,
+  // all the points of a cell would have to lie in its inner 0.3%), so the
+  // runs are those of the whole cell: they depend on the grid alone, are
+  // found once for all builds on the same grid, and a build only counts what
+  // they examine. The extra cells they may take hold no point within reach of
+  // the cell's, so a query finds the same points in the same order either way.
   bool build_runs_of_cells() {
+    examined_ = 0;
+    if (!grid_.shifts_suffice()) {
+      runs_.clear();
+      run_start_.assign(grid_.cell_count() + 1, 0);
+      runs_grid_.reset();
+      return false;
+    }
+    if (!grid_.cells_fit_reach(1.5)) {
+      runs_grid_.reset();
+      return find_runs([&](std::size_t c, Vec<D>& lo, Vec<D>& hi) { return box_of_points(c, lo, hi); },
+                       true);
+    }
+    if (!runs_grid_ || !runs_grid_->same_cells(grid_)) {
+      runs_within_next_plane_ = find_runs(
+          [&](std::size_t c, Vec<D>& lo, Vec<D>& hi) {
+            grid_.cell_box(c, lo, hi);
+            return true;
+          },
+          false);
+      runs_grid_ = grid_;
+    }
+    examined_ = examined_by_runs();
+    return runs_within_next_plane_;
+  }
+
+  // The box of cell c's finite points (a NaN or Inf coordinate has no
+  // neighbours: it does not widen the box); false for none.
+  bool box_of_points(std::size_t c, Vec<D>& lo, Vec<D>& hi) const {
+    bool any = false;
+    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+      if (!is_finite(points_[k])) continue;
+      for (int d = 0; d < D; ++d) {
+        lo[d] = any ? std::min(lo[d], points_[k][d]) : points_[k][d];
+        hi[d] = any ? std::max(hi[d], points_[k][d]) : points_[k][d];
+      }
+      any = true;
+    }
+    return any;
+  }
+
+  // runs_ and run_start_ from box(c, lo, hi), the box each cell's runs must
+  // reach from (false: no runs); skip_empty leaves out runs without points.
+  // In parallel, by blocks of cells: each block's runs depend on the block
+  // alone, and are joined in block order, so nothing depends on the threads.
+  template <class Box>
+  bool find_runs(Box&& box, bool skip_empty) {
     runs_.clear();
     run_start_.assign(grid_.cell_count() + 1, 0);
-    examined_ = 0;
-    if (!grid_.shifts_suffice()) return false;
-    // In parallel, by blocks of cells: each block's runs depend on the block
-    // alone, and are joined in block order, so nothing depends on the threads.
     const std::size_t blocks = (grid_.cell_count() + cells_per_block - 1) / cells_per_block;
     block_runs_.resize(blocks);
     std::vector<char> block_within(blocks);
     std::vector<std::size_t> block_examined(blocks);
     parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
       const std::size_t first = b * cells_per_block;
-      block_within[b] = runs_of_cells(first, std::min(grid_.cell_count(), first + cells_per_block),
-                                      block_runs_[b], block_examined[b]);
+      block_within[b] =
+          runs_of_cells(first, std::min(grid_.cell_count(), first + cells_per_block), box,
+                        skip_empty, block_runs_[b], block_examined[b]);
     });
     bool within_next_plane = true;
     for (std::size_t b = 0; b < blocks; ++b) {
@@ -280,12 +333,13 @@ class OrderedCellList {
     return within_next_plane;
   }
 
-  // build_runs_of_cells for cells from .. until-1: their runs into `runs`
-  // (run_start_ relative to it), and the points their member queries examine
-  // into `examined`; whether each stays within its cell's plane and the next
+  // find_runs for cells from .. until-1: their runs into `runs` (run_start_
+  // relative to it), and the points their member queries examine into
+  // `examined`; whether each stays within its cell's plane and the next
   // (from plane 0, or the last plane across the periodic edge).
-  bool runs_of_cells(std::size_t from, std::size_t until, std::vector<Run>& runs,
-                     std::size_t& examined) {
+  template <class Box>
+  bool runs_of_cells(std::size_t from, std::size_t until, Box& box, bool skip_empty,
+                     std::vector<Run>& runs, std::size_t& examined) {
     runs.clear();
     examined = 0;
     // Cells are numbered plane by plane (planes of cells along dimension 0):
@@ -299,27 +353,17 @@ class OrderedCellList {
       if (c == next_plane) ++a, next_plane += per_plane;
       const std::size_t after_next = next_plane + per_plane;
       run_start_[c] = runs.size();
-      // A point with a NaN or Inf coordinate has no neighbours: it does not widen the box.
-      bool any = false;
       Vec<D> lo{}, hi{};
-      for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
-        if (!is_finite(points_[k])) continue;
-        for (int d = 0; d < D; ++d) {
-          lo[d] = any ? std::min(lo[d], points_[k][d]) : points_[k][d];
-          hi[d] = any ? std::max(hi[d], points_[k][d]) : points_[k][d];
-        }
-        any = true;
-      }
-      if (!any) continue;
+      if (!box(c, lo, hi)) continue;
       grid_.for_each_run_of_box(
           lo, hi, [&](std::size_t first, std::size_t last, const Vec<D>& shift, auto) {
-            if (start_[first] == start_[last + 1]) return;
+            if (skip_empty && start_[first] == start_[last + 1]) return;
             // Field by field into the vector: a Run built on the stack and
             // copied by one wide load stalls on its narrower stores (42% of
             // this loop's time, measured).
             Run& added = runs.emplace_back();
-            added.first = start_[first];
-            added.stop = start_[last + 1];
+            added.first_cell = first;
+            added.stop_cell = last + 1;
             for (int d = 0; d < D; ++d) added.shift[d] = shift[d];
             examined += (start_[c + 1] - start_[c]) * (start_[last + 1] - start_[first]);
             // Beyond the next plane, only plane 0 meeting the last plane (across
@@ -328,6 +372,26 @@ class OrderedCellList {
           });
     }
     return within_next_plane;
+  }
+
+  // What the member queries examine through the runs as they stand.
+  std::size_t examined_by_runs() const {
+    const std::size_t blocks = (grid_.cell_count() + cells_per_block - 1) / cells_per_block;
+    std::vector<std::size_t> block_examined(blocks);
+    parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
+      std::size_t examined = 0;
+      for (std::size_t c = b * cells_per_block;
+           c < std::min(grid_.cell_count(), (b + 1) * cells_per_block); ++c) {
+        const std::size_t in_cell = start_[c + 1] - start_[c];
+        if (in_cell == 0) continue;
+        for (std::size_t r = run_start_[c]; r != run_start_[c + 1]; ++r)
+          examined += in_cell * (start_[runs_[r].stop_cell] - start_[runs_[r].first_cell]);
+      }
+      block_examined[b] = examined;
+    });
+    std::size_t total = 0;
+    for (std::size_t e : block_examined) total += e;
+    return total;
   }
 
   // The slabs of for_each_pair from the planes of cells, when every run of
@@ -352,6 +416,8 @@ class OrderedCellList {
   std::vector<Run> runs_;                    // cell c's runs: runs_[run_start_[c] ..
   std::vector<std::size_t> run_start_;       // ... run_start_[c+1]-1]
   std::vector<std::vector<Run>> block_runs_;  // build scratch, per block of cells
+  std::optional<CellGrid<D>> runs_grid_;     // the grid runs_ hold whole cells' runs for
+  bool runs_within_next_plane_ = false;      // ... and whether they keep the slab rule
   std::size_t examined_ = 0;                 // by all member queries, through the runs
   static constexpr std::size_t cells_per_block = 4096;
   SlabSchedule pair_slabs_;                  // the parallel schedule of for_each_pair
