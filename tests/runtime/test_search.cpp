@@ -213,6 +213,41 @@ TEMPLATE_TEST_CASE("random sets match the reference", "[search]", PARTC_ALL_DIMS
   if (D < 4) CHECK(parallel_slabs > 0);
 }
 
+// A cell list keeps what depends on its grid alone from one build to the
+// next (the runs of whole cells): rebuilt on case after case, and on the same
+// grid with other points, it must answer exactly as one built afresh (which
+// the tests above check against the reference).
+TEMPLATE_TEST_CASE("a cell list rebuilt case after case answers as one built afresh", "[search]",
+                   PARTC_ALL_DIMS) {
+  constexpr int D = TestType::value;
+  using Found = std::vector<std::pair<std::size_t, Vec<D>>>;
+  const auto near_of_each = [](const partc::OrderedCellList<D>& s, std::size_t n) {
+    std::vector<Found> found(n);
+    for (std::size_t k = 0; k < n; ++k)
+      s.for_each_near(k, [&](std::size_t j, const Vec<D>& dx) { found[k].push_back({j, dx}); });
+    return found;
+  };
+  partc::OrderedCellList<D> reused;
+  std::size_t differing = 0, compared = 0;
+  for_each_random_case<D>(500 * D, [&](const Case<D>& c) {
+    std::vector<Vec<D>> points = c.points;
+    for (int round = 0; round < 2; ++round) {  // the second: the same grid, the points reversed
+      reused.build(c.domain, c.radius, points);
+      partc::OrderedCellList<D> fresh;
+      fresh.build(c.domain, c.radius, points);
+      const bool same =
+          reused.order() == fresh.order() && reused.mean_examined() == fresh.mean_examined() &&
+          reused.pair_slabs().count() == fresh.pair_slabs().count() &&
+          near_of_each(reused, points.size()) == near_of_each(fresh, points.size());
+      differing += !same;
+      ++compared;
+      std::reverse(points.begin(), points.end());
+    }
+  });
+  INFO(compared << " builds compared");
+  CHECK(differing == 0);
+}
+
 TEMPLATE_TEST_CASE("points on cell edges and on lo/hi match the reference", "[search]",
                    PARTC_ALL_DIMS) {
   constexpr int D = TestType::value;
