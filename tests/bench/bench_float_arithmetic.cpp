@@ -21,13 +21,10 @@
 //                   build (what float lanes speed up);
 //   err             the relative L2 error of v's increment after one update,
 //                   ||v - v_ref|| / ||v_ref||, against a long double
-//                   reference: a hand-written cell grid, every pair within rc
-//                   of each particle summed in long double.
+//                   reference (seed_reference.hpp).
 //
 // Usage: bench_float_arithmetic [--n 10000,100000,1000000] [--repeats 5]
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -40,7 +37,9 @@
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
+#include "seed_model.hpp"
 #include "seed_points.hpp"
+#include "seed_reference.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -49,75 +48,6 @@ using Vec2 = partc::Vec<2>;
 constexpr double force_strength = 1e-3;  // c
 
 using bench::uniform_points;
-
-template <class Model>
-void load_points(Model& model, const std::vector<Vec2>& points, double rc) {
-  model.params().N = static_cast<std::int64_t>(points.size());
-  model.params().c = force_strength;
-  model.params().rc = rc;
-  partc::CsvTable table;
-  table.header = {"id", "p_0", "p_1"};
-  for (std::size_t i = 0; i < points.size(); ++i)
-    table.rows.push_back({static_cast<double>(i), points[i][0], points[i][1]});
-  model.load({{"P", table}});
-}
-
-// v by particle id.
-template <class Model>
-std::vector<Vec2> velocities(const Model& model) {
-  const auto& set = model.P();
-  const auto& v = set.template get<typename Model::P_v>();
-  std::vector<Vec2> by_id(set.size());
-  for (std::size_t k = 0; k < set.size(); ++k)
-    by_id[static_cast<std::size_t>(set.ids()[k])] = Vec2{{v[k][0], v[k][1]}};
-  return by_id;
-}
-
-// c * the seed's sum for every point, in long double: a grid of cells at
-// least rc wide (rc <= 1/3, N >= 27), each point against its 3 x 3 cells with
-// the minimum image, each pair from both ends (no Newton: nothing shared
-// with the code under test).
-std::vector<std::array<long double, 2>> reference_sums(const std::vector<Vec2>& points, double rc) {
-  const std::size_t side = static_cast<std::size_t>(std::floor(1.0 / rc));
-  std::vector<std::vector<std::size_t>> cells(side * side);
-  const auto cell_of = [&](double x) {
-    return std::min(side - 1, static_cast<std::size_t>(x * static_cast<double>(side)));
-  };
-  for (std::size_t k = 0; k < points.size(); ++k)
-    cells[cell_of(points[k][0]) * side + cell_of(points[k][1])].push_back(k);
-  const long double rcl = rc;
-  std::vector<std::array<long double, 2>> sums(points.size(), {0.0L, 0.0L});
-  partc::parallel_for(points.size(), partc::LoopWork::heavy, [&](std::size_t i) {
-    const std::size_t cx = cell_of(points[i][0]), cy = cell_of(points[i][1]);
-    for (std::size_t ox = side - 1; ox <= side + 1; ++ox)
-      for (std::size_t oy = side - 1; oy <= side + 1; ++oy)
-        for (const std::size_t j : cells[(cx + ox) % side * side + (cy + oy) % side]) {
-          std::array<long double, 2> dx;
-          for (int d = 0; d < 2; ++d) {
-            dx[d] = static_cast<long double>(points[j][d]) - points[i][d];
-            dx[d] -= std::nearbyint(dx[d]);  // the minimum image in the unit box
-          }
-          const long double r = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1]);
-          if (!(r < rcl && r > 0)) continue;
-          const long double s = -std::exp(-r) / r;
-          for (int d = 0; d < 2; ++d) sums[i][d] += force_strength * s * dx[d];
-        }
-  });
-  return sums;
-}
-
-// ||v - reference|| / ||reference||, over every component.
-double relative_l2(const std::vector<Vec2>& v,
-                   const std::vector<std::array<long double, 2>>& reference) {
-  long double error = 0, norm = 0;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int d = 0; d < 2; ++d) {
-      const long double e = v[i][d] - reference[i][d];
-      error += e * e;
-      norm += reference[i][d] * reference[i][d];
-    }
-  return static_cast<double>(std::sqrt(error / norm));
-}
 
 std::vector<std::size_t> parse_sizes(const std::string& text) {
   std::vector<std::size_t> sizes;
@@ -141,15 +71,17 @@ int run(const std::vector<std::size_t>& sizes, int repeats) {
     const std::vector<Vec2> points = uniform_points(n);
     MdVelocity in_double;
     MdVelocityFloat in_float;
-    load_points(in_double, points, rc);
-    load_points(in_float, points, rc);
+    bench::load_seed_points(in_double, points, rc, force_strength);
+    bench::load_seed_points(in_float, points, rc, force_strength);
     // One update each from v = 0 (v then holds the increment), before any timing;
     // the first builds each model's search.
     in_double.step();
     in_float.step();
-    const auto reference = reference_sums(points, rc);
-    const double err_double = relative_l2(velocities(in_double), reference);
-    const double err_float = relative_l2(velocities(in_float), reference);
+    const auto reference = bench::seed_reference(points, rc, force_strength);
+    const double err_double =
+        bench::seed_errors(bench::seed_velocities(in_double), reference).relative_l2;
+    const double err_float =
+        bench::seed_errors(bench::seed_velocities(in_float), reference).relative_l2;
 
     const partc::Domain<2> domain = bench::periodic_unit_square();
     partc::OrderedCellList<2> cells;
