@@ -97,6 +97,9 @@ STORAGES = {"double": ("fast_sum_tol", []),
 SCHEDULES = {"double": "double", "precision = float": "float storage",
              "arithmetic = float": "float arithmetic",
              "precision = float, arithmetic = float": "both"}
+# Float storage and both sit on one another: one label above, one below.
+LABEL_OFFSETS = {"double": (5, 3), "precision = float": (5, 5),
+                 "arithmetic = float": (5, 5), "precision = float, arithmetic = float": (5, -11)}
 SEED_COLUMNS = ["schedule", "rms_error", "max_error", "wall_time_s", "threads", "commit", "n",
                 "rms_stored", "cutoff_flips"]
 FAST_COLUMNS = ["tol", "rms_error", "max_error", "wall_time_s", "threads", "commit",
@@ -321,7 +324,7 @@ def draw(png, seed, fast, plan):
                   label=f"N = {n:.0e}".replace("e+0", "e"))
         for r, x in zip(mine, t):
             left.annotate(SCHEDULES[r["schedule"]], (x, r["rms_error"]), textcoords="offset points",
-                          xytext=(5, 3), fontsize=7, color=colour)
+                          xytext=LABEL_OFFSETS[r["schedule"]], fontsize=7, color=colour)
             if r["rms_stored"] != r["rms_error"]:
                 left.plot([x, x], [r["rms_stored"], r["rms_error"]], ":", color=colour, lw=0.8)
                 left.plot(x, r["rms_stored"], "o", mfc="white", mec=colour, ms=7)
@@ -346,8 +349,8 @@ def draw(png, seed, fast, plan):
             right.plot(t, [r["rms_stored"] for r in mine], "s", mfc="white", mec=colour,
                        label=f"{label}, against the direct sum of the values as stored")
     n = fast[0]["n"] if fast else 0
-    right.set_title(f"fast sum (dense = fmm, 1/r, N = {n} charges in the unit cube), "
-                    "labelled with tol; computed in double whatever the storage", fontsize=10)
+    right.set_title(f"fast sum (dense = fmm, 1/r, N = {n} charges in the unit cube), labelled "
+                    "with tol;\ncomputed in double whatever the storage", fontsize=10)
     right.set_xlabel(f"fast sum plan + evaluation [s] (median of {plan['fast_repeats']}, 1 thread)")
     right.set_ylabel("relative L2 error against the direct sum in double of the values as drawn")
     right.legend(fontsize=8, loc="upper right")
