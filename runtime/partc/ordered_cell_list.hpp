@@ -225,12 +225,17 @@ class OrderedCellList {
     const std::size_t blocks = n >= 2 * min_parallel(LoopWork::light) && cells <= n
                                    ? static_cast<std::size_t>(std::max(1, max_threads()))
                                    : 1;
-    const auto block_begin = [&](std::size_t b) { return b * n / blocks; };
+    // Each block's bounds and pointers in locals: the stores through count and
+    // place may alias anything else, so bounds read through captures would be
+    // reloaded, and b * n / blocks divided again, every iteration.
+    const auto block_begin = [n, blocks](std::size_t b) { return b * n / blocks; };
+    const std::size_t* cell_of_point = cell_of_point_.data();
     // block_place_[b * cells + c]: first block b's points in cell c, then where they go.
     block_place_.assign(blocks * cells, 0);
     parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
       std::size_t* count = block_place_.data() + b * cells;
-      for (std::size_t i = block_begin(b); i < block_begin(b + 1); ++i) ++count[cell_of_point_[i]];
+      for (std::size_t i = block_begin(b), stop = block_begin(b + 1); i < stop; ++i)
+        ++count[cell_of_point[i]];
     });
     start_.resize(cells + 1);
     std::size_t placed = 0;
@@ -241,10 +246,11 @@ class OrderedCellList {
     }
     start_[cells] = placed;
     order_.resize(n);
+    std::size_t* order = order_.data();
     parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
       std::size_t* place = block_place_.data() + b * cells;
-      for (std::size_t i = block_begin(b); i < block_begin(b + 1); ++i)
-        order_[place[cell_of_point_[i]]++] = i;
+      for (std::size_t i = block_begin(b), stop = block_begin(b + 1); i < stop; ++i)
+        order[place[cell_of_point[i]]++] = i;
     });
   }
 
