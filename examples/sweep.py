@@ -150,6 +150,27 @@ def find_partc(build_dir):
     return max(found, key=os.path.getmtime)
 
 
+def default_work(programs, build_dir, partc, name):
+    """Where a figure script's builds and logs go when --work is not given:
+    NAME beside the first --program (NAME=EXE), else in the build directory
+    (--build-dir, or the one holding --partc or the newest partc)."""
+    if programs:
+        home = os.path.dirname(os.path.abspath(programs[0].split("=", 1)[1]))
+    else:
+        home = build_dir or os.path.dirname(os.path.dirname(
+            os.path.abspath(partc or find_partc(None))))
+    return os.path.join(home, name)
+
+
+def save_figure(fig, png, dpi, who):
+    """Writes FIG to PNG (making its folder), closes it and says so."""
+    import matplotlib.pyplot as plt
+    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
+    fig.savefig(png, dpi=dpi)
+    plt.close(fig)
+    print(f"{who}: picture {png}")
+
+
 def runtime_library(partc):
     """The runtime library built beside PARTC (BUILD_DIR/compiler/partc)."""
     path = os.path.join(os.path.dirname(os.path.dirname(partc)), "libpartc_runtime.a")
@@ -363,10 +384,7 @@ def draw(png, rows, args, fit, chosen):
     left.legend(fontsize=8)
     fig.suptitle(args.title or f"{os.path.basename(args.model)}: {error_label} over {args.knob}")
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    print(f"sweep: picture {png}")
+    save_figure(fig, png, 110, "sweep")
 
 
 def read_table(path, knob):

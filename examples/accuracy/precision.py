@@ -361,10 +361,7 @@ def draw(png, seed, fast, plan):
     fig.suptitle("Precision: float storage (precision = float), float arithmetic with double "
                  "accumulation (arithmetic = float), and double: error against time")
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
-    fig.savefig(png, dpi=110)
-    plt.close(fig)
-    print(f"precision: picture {png}")
+    sweep.save_figure(fig, png, 110, "precision")
 
 
 # ---------------------------------------------------------------------------
@@ -420,10 +417,8 @@ def main(argv):
     else:
         try:
             if args.work is None:
-                home = os.path.dirname(os.path.abspath(args.program[0].split("=", 1)[1])) \
-                    if args.program else args.build_dir or os.path.dirname(os.path.dirname(
-                        os.path.abspath(args.partc or sweep.find_partc(None))))
-                args.work = os.path.join(home, "precision")
+                args.work = sweep.default_work(args.program, args.build_dir, args.partc,
+                                               "precision")
             os.makedirs(args.work, exist_ok=True)
             programs = programs_for(args)
             seed = seed_rows(programs["seed"], plan, args.work)

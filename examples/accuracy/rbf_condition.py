@@ -345,10 +345,7 @@ def draw(png, points, plans, warn_above):
     fig.suptitle("The shape parameter: error against the dense solve's conditioning "
                  "(one run per point, 0 steps: the solve is in init)")
     fig.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
-    fig.savefig(png, dpi=100)
-    plt.close(fig)
-    print(f"rbf_condition: picture {png}")
+    sweep.save_figure(fig, png, 100, "rbf_condition")
 
 
 def parse_arguments(argv):
@@ -394,10 +391,8 @@ def main(argv):
     else:
         try:
             if args.work is None:
-                home = os.path.dirname(os.path.abspath(args.program[0].split("=", 1)[1])) \
-                    if args.program else args.build_dir or os.path.dirname(os.path.dirname(
-                        os.path.abspath(args.partc or sweep.find_partc(None))))
-                args.work = os.path.join(home, "rbf_condition")
+                args.work = sweep.default_work(args.program, args.build_dir, args.partc,
+                                               "rbf_condition")
             points = run_sweeps(args, args.models)
         except sweep.SweepError as error:
             print(f"rbf_condition: {error}", file=sys.stderr)

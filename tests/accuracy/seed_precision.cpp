@@ -47,6 +47,7 @@
 #include "seed_precision_float_both.hpp"
 #include "seed_precision_float_storage.hpp"
 #include "seed_reference.hpp"
+#include "size_list.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -99,14 +100,6 @@ Choice measured(const char* schedule, Model& model, const std::vector<Vec2>& poi
   choice.increment = bench::seed_velocities(model);
   choice.stored_points = stored_points(model);
   return choice;
-}
-
-std::vector<std::size_t> parse_sizes(const std::string& text) {
-  std::vector<std::size_t> sizes;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    sizes.push_back(static_cast<std::size_t>(std::atof(item.c_str())));
-  return sizes;
 }
 
 int run(const std::vector<std::size_t>& sizes, int repeats, const std::string& csv_path) {
@@ -187,7 +180,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a];
     if (flag == "--n") {
-      sizes = parse_sizes(argv[a + 1]);
+      sizes = bench::parse_sizes(argv[a + 1]);
     } else if (flag == "--repeats") {
       repeats = std::atoi(argv[a + 1]);
     } else if (flag == "--csv") {

@@ -40,6 +40,7 @@
 #include "seed_model.hpp"
 #include "seed_points.hpp"
 #include "seed_reference.hpp"
+#include "size_list.hpp"
 #include "timing.hpp"
 
 namespace {
@@ -48,14 +49,6 @@ using Vec2 = partc::Vec<2>;
 constexpr double force_strength = 1e-3;  // c
 
 using bench::uniform_points;
-
-std::vector<std::size_t> parse_sizes(const std::string& text) {
-  std::vector<std::size_t> sizes;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    sizes.push_back(static_cast<std::size_t>(std::atof(item.c_str())));
-  return sizes;
-}
 
 int run(const std::vector<std::size_t>& sizes, int repeats) {
   std::printf(
@@ -139,7 +132,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a];
     if (flag == "--n") {
-      sizes = parse_sizes(argv[a + 1]);
+      sizes = bench::parse_sizes(argv[a + 1]);
     } else if (flag == "--repeats") {
       repeats = std::atoi(argv[a + 1]);
     } else {

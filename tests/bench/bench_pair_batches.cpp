@@ -33,6 +33,7 @@
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
 #include "seed_points.hpp"
+#include "size_list.hpp"
 #include "timing.hpp"
 #ifdef PARTC_BENCH_FLOOR
 #include "floor_kernels.hpp"
@@ -125,13 +126,6 @@ double distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   return std::sqrt(num / den);
 }
 
-std::vector<std::size_t> parse_sizes(const std::string& text) {
-  std::vector<std::size_t> sizes;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) sizes.push_back(std::stoul(item));
-  return sizes;
-}
-
 }  // namespace
 
 int run(const std::vector<std::size_t>& sizes, int repeats);
@@ -142,7 +136,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a];
     if (flag == "--n")
-      sizes = parse_sizes(argv[a + 1]);
+      sizes = bench::parse_sizes(argv[a + 1]);
     else if (flag == "--repeats")
       repeats = std::atoi(argv[a + 1]);
     else {
