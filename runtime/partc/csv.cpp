@@ -349,8 +349,20 @@ void check_integers(const CsvTable& table, std::size_t c, double low, double hig
   }
 }
 
-}  // namespace
+// How a variable is stored, which says what its columns may hold.
+enum class StoredAs { real, single, boolean, integer };
 
+StoredAs stored_as(const ColumnView& column) {
+  switch (column.element) {
+    case Element::f32: return StoredAs::single;
+    case Element::u8: return StoredAs::boolean;
+    case Element::i64: return StoredAs::integer;
+    case Element::f64: break;
+  }
+  return StoredAs::real;
+}
+
+// Every column of the table is one of `known`.
 void check_known_columns(const CsvTable& table, const std::vector<std::string>& known) {
   for (std::size_t c = 0; c < table.header.size(); ++c)
     if (std::find(known.begin(), known.end(), table.header[c]) == known.end())
@@ -359,6 +371,8 @@ void check_known_columns(const CsvTable& table, const std::vector<std::string>& 
           "unknown column " + detail::quoted(table.header[c]) + "; the columns are " + join(known));
 }
 
+// The columns of variable `name` (all present or none, the positions always),
+// each value one the variable can hold.
 void check_variable_columns(const CsvTable& table, const char* name,
                             const std::vector<std::string>& columns, StoredAs stored) {
   for (const auto& column : columns) {
@@ -395,6 +409,7 @@ void check_variable_columns(const CsvTable& table, const char* name,
   }
 }
 
+// Column c holds distinct non-negative integer ids below 2^53.
 void check_ids(const CsvTable& table, std::size_t c) {
   // Below 2^53: a larger id may already have been rounded to a neighbour on reading.
   check_integers(table, c, 0, largest_exact_integer - 1, "non-negative integer ids below 2^53");
@@ -406,6 +421,18 @@ void check_ids(const CsvTable& table, std::size_t c) {
                            "duplicate id " + std::to_string(id) + " (also on line " +
                                std::to_string(table.lines[previous->second]) + ")");
   }
+}
+
+}  // namespace
+
+void check_loadable(const CsvTable& table, const SetView& set) {
+  check_known_columns(table, csv_columns_of(set));
+  for (const ColumnView& column : set.columns)
+    check_variable_columns(table, column.name,
+                           csv_column_names(column.name, column.is_vec, column.components),
+                           stored_as(column));
+  const int id_column = table.column("id");
+  if (id_column >= 0) check_ids(table, static_cast<std::size_t>(id_column));
 }
 
 }  // namespace detail

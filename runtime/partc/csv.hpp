@@ -30,15 +30,14 @@
 //   a link, a pipe or a device such as /dev/stdout is written in place).
 //   vtk.hpp shares these helpers (partc::detail) rather than keep a twin copy.
 // - What does not depend on the set's type (reading, the checks, the
-//   messages) is compiled once, in the runtime library (csv.cpp): link
-//   partc_runtime.
+//   messages, writing a SetView) is compiled once, in the runtime library
+//   (csv.cpp): link partc_runtime.
 #pragma once
 
 #include <algorithm>
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
-#include <numeric>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -48,6 +47,7 @@
 
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
+#include "partc/io/set_view.hpp"
 #include "partc/output_file.hpp"
 #include "partc/vec.hpp"
 
@@ -78,40 +78,14 @@ inline void append_number(std::string& out, std::uint8_t x) { append_number(out,
 std::string join(const std::vector<std::string>& words);
 
 // The CSV column names of one variable: v, or v_0 .. v_{D-1} for a Vec<D>.
-template <class S>
-std::vector<std::string> csv_column_names(const std::string& name) {
-  std::vector<std::string> names;
-  if constexpr (StorageTraits<S>::is_vec) {
-    for (int k = 0; k < StorageTraits<S>::components; ++k)
-      names.push_back(name + "_" + std::to_string(k));
-  } else {
-    names.push_back(name);
-  }
-  return names;
-}
+std::vector<std::string> csv_column_names(const std::string& name, bool is_vec, int components);
 
 // Every CSV column of a set, in file order: id, p_0 .. p_{D-1}, then the variables.
-template <class Set>
-std::vector<std::string> csv_columns_of(const Set& set) {
-  std::vector<std::string> columns = {"id"};
-  set.for_each_variable([&](const char* name, const auto& values) {
-    using S = typename std::decay_t<decltype(values)>::value_type;
-    for (auto& column : csv_column_names<S>(name)) columns.push_back(std::move(column));
-  });
-  return columns;
-}
+std::vector<std::string> csv_columns_of(const SetView& set);
 
 // The set's indices in increasing id order: files are keyed by id whatever
 // order the set keeps its particles in, and a loaded set is stored so.
-template <class Set>
-std::vector<std::size_t> id_order(const Set& set) {
-  std::vector<std::size_t> order(set.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto& ids = set.ids();
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
-  return order;
-}
+std::vector<std::size_t> id_order(const std::int64_t* ids, std::size_t n);
 
 }  // namespace detail
 
@@ -119,17 +93,13 @@ struct CsvTable;
 
 namespace detail {
 
-// load_set's checks, each throwing the InputError of the first field at fault.
-// Every column of the table is one of `known`:
-void check_known_columns(const CsvTable& table, const std::vector<std::string>& known);
-// How a variable is stored, which says what its columns may hold.
-enum class StoredAs { real, single, boolean, integer };
-// The columns of variable `name` (all present or none, the positions always),
-// each value one the variable can hold:
-void check_variable_columns(const CsvTable& table, const char* name,
-                            const std::vector<std::string>& columns, StoredAs stored);
-// Column c holds distinct non-negative integer ids below 2^53:
-void check_ids(const CsvTable& table, std::size_t c);
+// load_set's checks, before it touches the set, throwing the InputError of
+// the first field at fault: every column of the table is one of the set's;
+// each variable has all its columns or none (the positions all); each value
+// is one its variable can hold (stored as float: within a float's range;
+// bool: 0 or 1; int: an integer); ids are distinct non-negative integers
+// below 2^53.
+void check_loadable(const CsvTable& table, const SetView& set);
 
 }  // namespace detail
 
@@ -174,20 +144,8 @@ CsvTable read_csv(const std::string& path);
 // Everything is checked before `set` is touched: on error it is unchanged.
 template <class Set, class Initialise>
 void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
-  detail::check_known_columns(table, detail::csv_columns_of(set));
-  std::as_const(set).for_each_variable([&](const char* name, const auto& values) {
-    using S = typename std::decay_t<decltype(values)>::value_type;
-    using detail::StoredAs;
-    constexpr StoredAs stored = std::is_same_v<typename StorageTraits<S>::component_type, float>
-                                    ? StoredAs::single
-                                : std::is_same_v<S, std::uint8_t> ? StoredAs::boolean
-                                : std::is_integral_v<S>           ? StoredAs::integer
-                                                                  : StoredAs::real;
-    detail::check_variable_columns(table, name, detail::csv_column_names<S>(name), stored);
-  });
+  detail::check_loadable(table, view_of("", std::as_const(set)));
   const int id_column = table.column("id");
-  if (id_column >= 0) detail::check_ids(table, static_cast<std::size_t>(id_column));
-
   set.clear();
   set.reserve(table.rows.size());
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
@@ -198,7 +156,8 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
   }
   set.for_each_variable([&](const char* name, auto& values) {
     using S = typename std::decay_t<decltype(values)>::value_type;
-    const auto columns = detail::csv_column_names<S>(name);
+    const auto columns =
+        detail::csv_column_names(name, StorageTraits<S>::is_vec, StorageTraits<S>::components);
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const int found = table.column(columns[k]);
       if (found < 0) continue;
@@ -214,7 +173,7 @@ void load_set(const CsvTable& table, Set& set, Initialise&& initialise) {
   });
   // Kept in id order, as init creates them: the order of the rows must not
   // change a result (sums within a cell run in storage order).
-  set.permute(detail::id_order(set));
+  set.permute(detail::id_order(set.ids().data(), set.size()));
 }
 
 template <class Set>
@@ -222,28 +181,11 @@ void load_set(const CsvTable& table, Set& set) {
   load_set(table, set, [](std::size_t) {});
 }
 
+void write_csv(const std::string& path, const SetView& set);
+
 template <class Set>
 void write_csv(const std::string& path, const Set& set) {
-  const auto order = detail::id_order(set);
-  detail::write_file_atomically(path, [&](std::ostream& out) {
-    std::string line;
-    for (const auto& column : detail::csv_columns_of(set))
-      line += (line.empty() ? "" : ",") + column;
-    out << line << '\n';
-    for (const std::size_t i : order) {
-      line.clear();
-      detail::append_number(line, set.ids()[i]);
-      set.for_each_variable([&](const char*, const auto& values) {
-        using S = typename std::decay_t<decltype(values)>::value_type;
-        for (int k = 0; k < StorageTraits<S>::components; ++k) {
-          line += ',';
-          detail::append_number(line, StorageTraits<S>::component(values[i], k));
-        }
-      });
-      line += '\n';
-      out << line;
-    }
-  });
+  write_csv(path, view_of("", set));
 }
 
 }  // namespace partc

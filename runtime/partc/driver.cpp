@@ -1,5 +1,6 @@
 // partc/driver.cpp: the driver's command line, --help and exit statuses,
-// the same for every model (driver.hpp says what the options do).
+// the same for every model (driver.hpp says what the options do; the run
+// itself is run_model.cpp).
 #include "partc/driver.hpp"
 
 #include <algorithm>
@@ -210,62 +211,6 @@ void print_help(std::ostream& out, const ModelFacts& facts) {
   text << "\nExit status: 0 success, 1 bad input file or I/O failure, 2 bad arguments,\n"
        << "3 numerical blow-up (NaN or Inf in a variable).\n";
   out << text.str();
-}
-
-std::string last_finite_path(const std::string& model, const DriverOptions& options) {
-  if (!options.last_finite.empty()) return options.last_finite;
-  if (options.output.empty()) return model + ".last-finite.csv";
-  const std::filesystem::path p(options.output);
-  return (p.parent_path() / (p.stem().string() + ".last-finite" + p.extension().string())).string();
-}
-
-namespace {
-
-bool due(std::int64_t step, std::int64_t every) { return every > 0 && step % every == 0; }
-
-}  // namespace
-
-RunPlan::RunPlan(const DriverOptions& options, std::vector<FrameSpec> frames, bool named,
-                 std::optional<ThermoLog> log)
-    : options_(options), named_(named), log_(std::move(log)) {
-  for (FrameSpec& f : frames) frames_.emplace(f.set, std::move(f));
-  if (!options.vtk_prefix.empty())
-    for (const auto& [set, unused] : frames_) series_.emplace(set, options.vtk_prefix + "_" + set);
-}
-
-std::int64_t RunPlan::every(const FrameSpec& frame) const {
-  return options_.every.value_or(frame.every);
-}
-
-bool RunPlan::any_frame_due(std::int64_t step) const {
-  return std::any_of(series_.begin(), series_.end(),
-                     [&](const auto& s) { return due(step, every(frames_.at(s.first))); });
-}
-
-bool RunPlan::observed(std::int64_t step) const {
-  return step == options_.steps || any_frame_due(step) || (log_ && log_->uses(step));
-}
-
-bool RunPlan::check_due(std::int64_t step) const {
-  return due(step, options_.check_every) || (any_frame_due(step) && options_.check_every > 0);
-}
-
-void RunPlan::rethrow_with_last_clean(const NumericalError& e, std::int64_t step) const {
-  if (clean_ < 0 || step - clean_ <= 1) throw;
-  throw NumericalError(std::string(e.what()) + " (checked every " +
-                       std::to_string(options_.check_every) + " steps: it arose after step " +
-                       std::to_string(clean_) + ", the last found finite; --check-every 1 " +
-                       "finds the step)");
-}
-
-VtkSeries* RunPlan::frame_due(const std::string& set, std::int64_t step) {
-  const auto s = series_.find(set);
-  if (s == series_.end() || !due(step, every(frames_.at(set)))) return nullptr;
-  return &s->second;
-}
-
-const std::vector<std::string>* RunPlan::frame_variables(const std::string& set) const {
-  return named_ ? &frames_.at(set).variables : nullptr;
 }
 
 int exit_status_of(const std::string& model, std::ostream& err, const std::function<void()>& run) {

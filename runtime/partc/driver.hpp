@@ -43,23 +43,19 @@
 //   predicted error and, with --check-accuracy, the error measured against
 //   the direct sum), and ends with the model's search_report(): each neighbour search
 //   or set of Verlet lists, its structure and how often it was built.
-// - The command line, --help and the exit statuses are the same code for
-//   every model, compiled once in the runtime library (driver.cpp), from
-//   the ModelFacts a model gives: link partc_runtime.
+// - The command line, --help and the exit statuses (driver.cpp), and the
+//   run loop with its checks, files and summary (run_model.cpp), are the
+//   same code for every model, compiled once in the runtime library: a model
+//   is seen through RunnableModel, which ModelAdapter<Model> implements with
+//   a few lines per member. Link partc_runtime.
 #pragma once
 
 #include <algorithm>
-#include <chrono>
-#include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <functional>
-#include <iomanip>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -67,12 +63,9 @@
 
 #include "partc/csv.hpp"
 #include "partc/errors.hpp"
-#include "partc/finite.hpp"
-#include "partc/last_finite.hpp"
-#include "partc/model_support.hpp"  // ParamInfo: a model used as a library needs it too
-#include "partc/thermo_log.hpp"
-#include "partc/vec.hpp"
-#include "partc/vtk.hpp"
+#include "partc/io/set_view.hpp"
+#include "partc/model_support.hpp"  // ParamInfo, SearchReport: a model used as a library needs them too
+#include "partc/vtk.hpp"            // FrameSpec
 
 namespace partc {
 
@@ -150,26 +143,11 @@ template <class Model>
 struct has_observed_steps<Model, std::void_t<decltype(std::declval<Model&>().step(true))>>
     : std::true_type {};
 
-template <class Model>
-void take_step(Model& model, bool observed) {
-  if constexpr (has_observed_steps<Model>::value)
-    model.step(observed);
-  else
-    model.step();
-}
-
 template <class Model, class = void>
 struct has_time : std::false_type {};
 template <class Model>
 struct has_time<Model, std::void_t<decltype(std::declval<const Model&>().time())>>
     : std::true_type {};
-
-template <class Model>
-std::vector<std::string> set_names(const Model& model) {
-  std::vector<std::string> names;
-  model.for_each_set([&](const char* name, const auto&) { names.emplace_back(name); });
-  return names;
-}
 
 // What the options and --help need to know of a model, gathered once from it,
 // so that parsing them and writing the help are compiled once (driver.cpp).
@@ -180,30 +158,137 @@ struct ModelFacts {
   std::vector<std::string> log_columns;  // observables logged, if any
   std::int64_t log_every = 0;            // the model's progress interval, when it logs
   bool logs = false, solves = false, fast_sums = false;
+  bool named_frames = false;  // `output SET: ...` says what VTK frames hold
+  bool profiles = false;      // compiled with --profile
   std::vector<ParamInfo> params;
   // Model::set_param: checks and sets a parameter (--set).
   std::function<void(const std::string& name, const std::string& value)> set_param;
 };
 
+// A model as the run loop (run_model.cpp) sees it, whatever its type: one
+// virtual call per step or per file written, none inside a step, so that the
+// loop, the writers and the summary are compiled once for every model.
+// ModelAdapter<Model> implements it; a model lacking an optional part (the
+// traits above) gets what its absence means.
+class RunnableModel {
+ public:
+  virtual ~RunnableModel() = default;
+  virtual ModelFacts facts() = 0;
+  // The seed, and the options of the model's solves and fast sums.
+  virtual void configure(const DriverOptions& options) = 0;
+  virtual void init() = 0;
+  virtual void load(const std::map<std::string, CsvTable>& tables) = 0;
+  // Per set, what its frames hold (every variable without `output SET: ...`).
+  virtual std::vector<FrameSpec> frames() const = 0;
+  virtual void run_stage(const std::string& name) = 0;
+  virtual void step(bool observed) = 0;
+  virtual std::int64_t step_count() const = 0;
+  // VTK's time: the model's t when it has a timestep, else the step number.
+  virtual double time() const = 0;
+  // The logged observables: the progress interval (once the parameters are
+  // known) and a row of values.
+  virtual std::int64_t log_every() const = 0;
+  virtual std::vector<double> log_row() const = 0;
+  virtual void check_finite() const = 0;
+  // Views of every set, in declaration order (stale after the next step).
+  virtual std::vector<SetView> sets() const = 0;
+  // The summary's lines on open faces, solves and fast sums, and the searches.
+  virtual std::vector<std::string> reports() const = 0;
+  virtual std::vector<SearchReport> search_report() const = 0;
+  // --profile: calibrates the kernels' timers, then reports them.
+  virtual void report_profile(std::ostream& out, std::int64_t steps) = 0;
+};
+
 template <class Model>
-ModelFacts facts_of(Model& model) {
-  ModelFacts facts;
-  facts.name = Model::model_name;
-  facts.sets = set_names(model);
-  if constexpr (has_stages<Model>::value) facts.stages = Model::stage_names();
-  if constexpr (logs_observables<Model>::value) {
-    facts.logs = true;
-    facts.log_columns = Model::log_columns();
-    facts.log_every = model.log_every();
+class ModelAdapter final : public RunnableModel {
+ public:
+  explicit ModelAdapter(Model& model) : model_(model) {}
+
+  ModelFacts facts() override {
+    ModelFacts facts;
+    facts.name = Model::model_name;
+    model_.for_each_set([&](const char* name, const auto&) { facts.sets.emplace_back(name); });
+    if constexpr (has_stages<Model>::value) facts.stages = Model::stage_names();
+    if constexpr (logs_observables<Model>::value) {
+      facts.logs = true;
+      facts.log_columns = Model::log_columns();
+      facts.log_every = model_.log_every();
+    }
+    facts.solves = has_solves<Model>::value;
+    facts.fast_sums = has_fast_sums<Model>::value;
+    facts.named_frames = has_frames<Model>::value;
+    facts.profiles = has_profile<Model>::value;
+    facts.params = Model::param_info();
+    facts.set_param = [this](const std::string& name, const std::string& value) {
+      model_.set_param(name, value);
+    };
+    return facts;
   }
-  facts.solves = has_solves<Model>::value;
-  facts.fast_sums = has_fast_sums<Model>::value;
-  facts.params = Model::param_info();
-  facts.set_param = [&model](const std::string& name, const std::string& value) {
-    model.set_param(name, value);
-  };
-  return facts;
-}
+  void configure(const DriverOptions& options) override {
+    model_.set_seed(options.seed);
+    if constexpr (has_solves<Model>::value) model_.set_matrix_market(options.matrix_market);
+    if constexpr (has_fast_sums<Model>::value) model_.set_check_accuracy(options.check_accuracy);
+  }
+  void init() override { model_.init(); }
+  void load(const std::map<std::string, CsvTable>& tables) override { model_.load(tables); }
+  std::vector<FrameSpec> frames() const override {
+    if constexpr (has_frames<Model>::value) return model_.frames();
+    std::vector<FrameSpec> every_variable;
+    model_.for_each_set([&](const char* name, const auto&) {
+      every_variable.push_back(FrameSpec{name, {}, 1});
+    });
+    return every_variable;
+  }
+  void run_stage([[maybe_unused]] const std::string& name) override {
+    if constexpr (has_stages<Model>::value) model_.run_stage(name);
+  }
+  void step([[maybe_unused]] bool observed) override {
+    if constexpr (has_observed_steps<Model>::value)
+      model_.step(observed);
+    else
+      model_.step();
+  }
+  std::int64_t step_count() const override { return model_.step_count(); }
+  double time() const override {
+    if constexpr (has_time<Model>::value) return model_.time();
+    return static_cast<double>(model_.step_count());
+  }
+  std::int64_t log_every() const override {
+    if constexpr (logs_observables<Model>::value) return model_.log_every();
+    return 0;
+  }
+  std::vector<double> log_row() const override {
+    if constexpr (logs_observables<Model>::value) return model_.log_row();
+    return {};
+  }
+  void check_finite() const override { model_.check_finite(); }
+  std::vector<SetView> sets() const override {
+    std::vector<SetView> views;
+    model_.for_each_set([&](const char* name, const auto& set) { views.push_back(view_of(name, set)); });
+    return views;
+  }
+  std::vector<std::string> reports() const override {
+    std::vector<std::string> lines;
+    const auto add = [&](const std::vector<std::string>& more) {
+      lines.insert(lines.end(), more.begin(), more.end());
+    };
+    if constexpr (has_open_faces<Model>::value) add(model_.boundary_report());
+    if constexpr (has_solves<Model>::value) add(model_.solve_report());
+    if constexpr (has_fast_sums<Model>::value) add(model_.fast_sum_report());
+    return lines;
+  }
+  std::vector<SearchReport> search_report() const override { return model_.search_report(); }
+  void report_profile([[maybe_unused]] std::ostream& out,
+                      [[maybe_unused]] std::int64_t steps) override {
+    if constexpr (has_profile<Model>::value) {
+      model_.calibrate_profile(9);
+      model_.profile().report(out, steps);
+    }
+  }
+
+ private:
+  Model& model_;
+};
 
 std::string usage_line(const std::string& model);
 
@@ -216,216 +301,17 @@ DriverOptions parse_driver_options(const ModelFacts& facts, const std::vector<st
 
 void print_help(std::ostream& out, const ModelFacts& facts);
 
-// Per set: particle count, then min/mean/max of each variable (of |v| for a vec).
-template <class Model>
-void print_summary(std::ostream& out, const Model& model, const DriverOptions& options,
-                   double seconds) {
-  std::ostringstream text;
-  text << Model::model_name << ": " << model.step_count() << " steps, seed " << options.seed << ", "
-       << seconds << " s\n";
-  model.for_each_set([&](const char* set_name, const auto& set) {
-    text << set_name << ": " << set.size() << (set.size() == 1 ? " particle, " : " particles, ")
-         << std::decay_t<decltype(set)>::bytes_per_particle << " bytes each\n";
-    if (set.empty()) return;
-    text << "  " << std::left << std::setw(12) << "variable" << std::right << std::setw(14) << "min"
-         << std::setw(14) << "mean" << std::setw(14) << "max"
-         << "\n";
-    set.for_each_variable([&](const char* name, const auto& values) {
-      using S = typename std::decay_t<decltype(values)>::value_type;
-      double low = std::numeric_limits<double>::infinity(), high = -low, sum = 0;
-      for (const S& value : values) {
-        double x;
-        if constexpr (StorageTraits<S>::is_vec)
-          x = norm(value);
-        else
-          x = static_cast<double>(value);
-        low = std::min(low, x);
-        high = std::max(high, x);
-        sum += x;
-      }
-      const std::string label = StorageTraits<S>::is_vec ? "|" + std::string(name) + "|" : name;
-      text << "  " << std::left << std::setw(12) << label << std::right << std::setw(14) << low
-           << std::setw(14) << sum / static_cast<double>(values.size()) << std::setw(14) << high
-           << "\n";
-    });
-  });
-  if constexpr (has_open_faces<Model>::value)
-    for (const std::string& line : model.boundary_report()) text << line << "\n";
-  if constexpr (has_solves<Model>::value)
-    for (const std::string& line : model.solve_report()) text << line << "\n";
-  if constexpr (has_fast_sums<Model>::value)
-    for (const std::string& line : model.fast_sum_report()) text << line << "\n";
-  const std::vector<SearchReport> searches = model.search_report();
-  if (!searches.empty()) text << "neighbour searches:\n";
-  for (const SearchReport& s : searches)
-    text << "  " << s.serves << ": " << s.structure << "; built " << s.builds
-         << (s.builds == 1 ? " time" : " times") << ", walked " << s.walks
-         << (s.walks == 1 ? " time\n" : " times\n");
-  out << text.str();
-}
-
 // Where the last finite state goes: --last-finite, else beside --output, else
 // here, named after the model.
 std::string last_finite_path(const std::string& model, const DriverOptions& options);
 
-// When a run writes, logs and checks, the same for every model: run_model
-// asks it at each step. Frames are due for a set every --every steps, else
-// its own interval; a step is observed when something reads the state after
-// it (a frame, a log row, or it is the last).
-class RunPlan {
- public:
-  // frames: one per set; named: the model names their variables (`output
-  // SET: ...`), else frames hold every variable.
-  RunPlan(const DriverOptions& options, std::vector<FrameSpec> frames, bool named,
-          std::optional<ThermoLog> log);
+// Runs the model as the options say (run_model.cpp): init or load, the
+// stages, the steps with their checks, frames and log, the output, the summary.
+void run_model(RunnableModel& model, const ModelFacts& facts, const DriverOptions& options,
+               std::ostream& out);
 
-  bool observed(std::int64_t step) const;
-  // Whether the state of `step` is checked for NaN and Inf: every
-  // --check-every steps, and whenever a frame is written (unless checks are off).
-  bool check_due(std::int64_t step) const;
-  void found_finite(std::int64_t step) { clean_ = step; }
-  // In a handler of the NumericalError e of the check at `step`: rethrows it,
-  // or, when the last clean check was more than a step before, an error that
-  // says since when the value may be there.
-  [[noreturn]] void rethrow_with_last_clean(const NumericalError& e, std::int64_t step) const;
-
-  // The series the set's frame of `step` goes to, or null when none is due.
-  VtkSeries* frame_due(const std::string& set, std::int64_t step);
-  // The variables the set's frames hold (null: all of them).
-  const std::vector<std::string>* frame_variables(const std::string& set) const;
-
-  void log_row(std::int64_t step, const std::vector<double>& values) { log_->row(step, values); }
-  void close_log() {
-    if (log_) log_->close();
-  }
-
- private:
-  bool any_frame_due(std::int64_t step) const;
-  std::int64_t every(const FrameSpec& frame) const;
-
-  const DriverOptions& options_;
-  std::map<std::string, FrameSpec> frames_;
-  bool named_;
-  std::map<std::string, VtkSeries> series_;  // empty without --vtk
-  std::optional<ThermoLog> log_;
-  std::int64_t clean_ = -1;  // the last step found finite
-};
-
-// Writes the kept state after a blow-up; returns what to add to its message.
-template <class Model>
-std::string keep_last_finite(const LastFinite& kept, const Model& model,
-                             const DriverOptions& options) {
-  if (kept.empty()) return "no state was found finite before it, so none is written";
-  const std::string path = last_finite_path(Model::model_name, options);
-  const bool several = set_names(model).size() > 1;
-  try {
-    const std::vector<std::string> paths = kept.write(
-        [&](const std::string& set) { return several ? path_for_set(path, set) : path; });
-    return "the last state found finite, at step " + std::to_string(kept.step()) + ", is in " +
-           join(paths) + " (--input reads it back)";
-  } catch (const std::exception& e) {
-    return "the last state found finite, at step " + std::to_string(kept.step()) +
-           ", could not be written: " + e.what();
-  }
-}
-
-template <class Model>
-void run_model(Model& model, const DriverOptions& options, std::ostream& out) {
-  const auto start = std::chrono::steady_clock::now();
-  model.set_seed(options.seed);
-  if constexpr (has_solves<Model>::value) model.set_matrix_market(options.matrix_market);
-  if constexpr (has_fast_sums<Model>::value) model.set_check_accuracy(options.check_accuracy);
-  if (options.inputs.empty()) {
-    model.init();
-  } else {
-    std::map<std::string, CsvTable> tables;
-    for (const auto& [set, file] : options.inputs) tables.emplace(set, read_csv(file));
-    model.load(tables);
-  }
-
-  const std::vector<std::string> sets = set_names(model);
-  // Per set: its frames' variables (all of them without `output SET: ...`).
-  std::vector<FrameSpec> frames;
-  if constexpr (has_frames<Model>::value) {
-    frames = model.frames();
-  } else {
-    for (const auto& set : sets) frames.push_back(FrameSpec{set, {}, 1});
-  }
-
-  if constexpr (has_stages<Model>::value)
-    for (const auto& [name, runs] : options.stages)
-      for (std::int64_t k = 0; k < runs; ++k) model.run_stage(name);
-
-  std::optional<ThermoLog> log;
-  if constexpr (logs_observables<Model>::value)
-    log.emplace(Model::log_columns(), options.quiet ? nullptr : &out,
-                options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
-  RunPlan plan(options, std::move(frames), has_frames<Model>::value, std::move(log));
-
-  // Step 0 (the state after init or load) is checked and written like any other.
-  // A step that writes a VTK frame is checked too, so no frame holds a NaN.
-  bool checked = false;
-  [[maybe_unused]] std::chrono::duration<double> stepping{0};  // in step(), for --profile
-  LastFinite kept(model);
-  const auto check = [&](std::int64_t step) {
-    try {
-      model.check_finite();
-    } catch (const NumericalError& e) {
-      plan.rethrow_with_last_clean(e, step);
-    }
-    plan.found_finite(step);
-    kept.take(model, step);
-  };
-  try {
-    for (std::int64_t k = 0; k <= options.steps; ++k) {
-      if (k > 0) {
-        if constexpr (has_profile<Model>::value) {
-          const auto before = std::chrono::steady_clock::now();
-          take_step(model, plan.observed(k));
-          stepping += std::chrono::steady_clock::now() - before;
-        } else {
-          take_step(model, plan.observed(k));
-        }
-      }
-      const std::int64_t step = model.step_count();
-      checked = plan.check_due(step);
-      if (checked) check(step);
-      if constexpr (logs_observables<Model>::value)
-        if (plan.observed(k)) plan.log_row(step, model.log_row());
-      double time = static_cast<double>(step);
-      if constexpr (has_time<Model>::value) time = model.time();
-      model.for_each_set([&](const char* name, const auto& set) {
-        if (VtkSeries* series = plan.frame_due(name, step))
-          series->write(set, step, time, plan.frame_variables(name));
-      });
-    }
-    if (options.check_every > 0 && !checked) check(model.step_count());
-  } catch (const NumericalError& e) {
-    throw NumericalError(std::string(e.what()) + "\n" + Model::model_name +
-                         ": note: " + keep_last_finite(kept, model, options));
-  }
-  plan.close_log();
-
-  if (!options.output.empty())
-    model.for_each_set([&](const char* name, const auto& set) {
-      write_csv(sets.size() > 1 ? path_for_set(options.output, name) : options.output, set);
-    });
-  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-  if (!options.quiet) print_summary(out, model, options, elapsed.count());
-  // After the output and the summary: the calibration runs kernels again.
-  if constexpr (has_profile<Model>::value) {
-    if (options.quiet) return;
-    model.calibrate_profile(9);
-    model.profile().report(out, options.steps);
-    out << "  the driver's clock around step(): "
-        << (options.steps > 0 ? 1e3 * stepping.count() / static_cast<double>(options.steps) : 0)
-        << " ms a step\n";
-  }
-}
-
-}  // namespace detail
-
-namespace detail {
+// --help, or the options parsed and the model run.
+void drive(RunnableModel& model, const std::vector<std::string>& args, std::ostream& out);
 
 // run(), with the errors it throws written to err and mapped to the exit
 // status (see the top of this file); 0 when it returns.
@@ -439,11 +325,8 @@ int run_driver(int argc, char** argv, std::ostream& out, std::ostream& err) {
   const std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
   return detail::exit_status_of(Model::model_name, err, [&] {
     Model model;
-    if (std::find(args.begin(), args.end(), "--help") != args.end())
-      return detail::print_help(out, detail::facts_of(model));
-    const detail::DriverOptions options =
-        detail::parse_driver_options(detail::facts_of(model), args);
-    detail::run_model(model, options, out);
+    detail::ModelAdapter<Model> adapter(model);
+    detail::drive(adapter, args, out);
   });
 }
 

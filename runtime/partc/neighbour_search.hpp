@@ -33,7 +33,10 @@
 // neighbour; the set's arrays are then read out of spatial order.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,40 +102,9 @@ class NeighbourSearch {
 
   template <class Set>
   void build(const Domain<D>& domain, double requested_radius, Set& set) {
-    const double radius = requested_radius > 0 || std::isnan(requested_radius)
-                              ? requested_radius  // NaN: check_search_arguments refuses it
-                              : std::numeric_limits<double>::min();
-    const std::size_t n = set.positions().size();
-    size_ = n;
-    const CellGrid<D> grid(domain, radius, n);
-    const double saved = static_cast<double>(n) * (1.0 - grid.visited_fraction());
-    // A periodic dimension with < 3 cells (radius > L/3) also means brute force:
-    // the cell list would need a per-pair minimum_image there.
-    // Only brute force reports every periodic image of a point, which a radius
-    // over half a periodic length needs: there it is used whatever was forced.
-    const bool brute = BruteForce<D>::needs_all_images(domain, radius) ||
-                       (forced_ ? *forced_ == Kind::brute_force
-                                : saved < margin_ || !grid.shifts_suffice());
-    ++build_count_;
-    if (brute) {
-      kind_ = Kind::brute_force;
-      brute_force_.build(domain, radius, set.positions());
-      return;
-    }
-    if (forced_ != Kind::kd_tree) {
-      cell_list_.build(domain, radius, set.positions());
-      // Clustered points crowd a few cells: there the tree is cheaper.
-      const double examined = cell_list_.mean_examined();
-      if (forced_ == Kind::cell_list || examined <= kd_tree_above_examined ||
-          examined <= kd_tree_clustering * static_cast<double>(n) * grid.visited_fraction()) {
-        kind_ = Kind::cell_list;
-        adopt_order(cell_list_.order(), set);
-        return;
-      }
-    }
-    kind_ = Kind::kd_tree;
-    kd_tree_.build(domain, radius, set.positions());
-    adopt_order(kd_tree_.order(), set);
+    if (const std::vector<std::size_t>* order =
+            build_structure(domain, requested_radius, set.positions()))
+      set.permute(*order);
   }
 
   template <class F>
@@ -190,30 +162,11 @@ class NeighbourSearch {
   // filtered by vectors, in the cell list's slabs (in parallel); on the others
   // the batches are filled from for_each_pair, serially. With Order::keep, i
   // and j are the set's indices, as for for_each_pair.
-  template <class F>
-  void for_each_pair_batch(bool with_self, F&& f) const {
-    if (kind_ == Kind::cell_list) {
-      if (batched_build_ != build_count_) {  // the coordinates, once per build
-        batches_.build(cell_list_, size_);
-        batched_build_ = build_count_;
-      }
-      // One walk for both orders (the test is per batch, not per pair).
-      return batches_.for_each_pair(cell_list_, with_self, [&](simd::PairBatch<D>& batch) {
-        if (sorted_apart()) batch.renumber(order_);
-        f(batch);
-      });
-    }
-    simd::PairBatch<D>& batch = serial_batch_;
-    batch.clear();
-    pairs_off_cells([&](std::size_t i, const auto& pairs) {
-      pairs([&](std::size_t j, const Vec<D>& dx) {
-        // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
-        if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
-      });
-      batch.hand_over_if_full(f);
-    });
-    batch.hand_over_rest(f);
-  }
+  //
+  // Compiled once in the runtime library (searches.cpp), not with each
+  // model: f is called through std::function once a batch (tens of pairs).
+  void for_each_pair_batch(bool with_self,
+                           const std::function<void(simd::PairBatch<D>&)>& f) const;
 
   // Whether such sums should take for_each_pair over per-particle queries:
   // when its pairs run in parallel (cell list), and when the set is small
@@ -335,15 +288,14 @@ class NeighbourSearch {
     return [this, &f](std::size_t j, const Vec<D>& x) { f(order_[j], x); };
   }
 
-  // Reorder the set (it then matches the structure), or keep its order and
-  // remember the map both ways.
-  template <class Set>
-  void adopt_order(const std::vector<std::size_t>& order, Set& set) {
-    if (!keep_order_) return set.permute(order);
-    order_ = order;
-    rank_.resize(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) rank_[order[k]] = k;
-  }
+  // Builds the structure the data calls for (see the top of the file), on
+  // double or float positions. Returns the order the set must take (the
+  // structure's), or null when it keeps its own: brute force, or Order::keep,
+  // which remembers the map both ways instead. Compiled in searches.cpp.
+  template <class T>
+  const std::vector<std::size_t>* build_structure(const Domain<D>& domain, double requested_radius,
+                                                  const std::vector<Vec<D, T>>& points);
+  const std::vector<std::size_t>* adopt_order(const std::vector<std::size_t>& order);
 
  private:
   double margin_ = default_margin;
@@ -363,5 +315,93 @@ class NeighbourSearch {
   mutable std::size_t batched_build_ = 0;
   mutable simd::PairBatch<D> serial_batch_;
 };
+
+template <int D>
+template <class T>
+const std::vector<std::size_t>* NeighbourSearch<D>::build_structure(
+    const Domain<D>& domain, double requested_radius, const std::vector<Vec<D, T>>& points) {
+  const double radius = requested_radius > 0 || std::isnan(requested_radius)
+                            ? requested_radius  // NaN: check_search_arguments refuses it
+                            : std::numeric_limits<double>::min();
+  const std::size_t n = points.size();
+  size_ = n;
+  const CellGrid<D> grid(domain, radius, n);
+  const double saved = static_cast<double>(n) * (1.0 - grid.visited_fraction());
+  // A periodic dimension with < 3 cells (radius > L/3) also means brute force:
+  // the cell list would need a per-pair minimum_image there.
+  // Only brute force reports every periodic image of a point, which a radius
+  // over half a periodic length needs: there it is used whatever was forced.
+  const bool brute = BruteForce<D>::needs_all_images(domain, radius) ||
+                     (forced_ ? *forced_ == Kind::brute_force
+                              : saved < margin_ || !grid.shifts_suffice());
+  ++build_count_;
+  if (brute) {
+    kind_ = Kind::brute_force;
+    brute_force_.build(domain, radius, points);
+    return nullptr;
+  }
+  if (forced_ != Kind::kd_tree) {
+    cell_list_.build(domain, radius, points);
+    // Clustered points crowd a few cells: there the tree is cheaper.
+    const double examined = cell_list_.mean_examined();
+    if (forced_ == Kind::cell_list || examined <= kd_tree_above_examined ||
+        examined <= kd_tree_clustering * static_cast<double>(n) * grid.visited_fraction()) {
+      kind_ = Kind::cell_list;
+      return adopt_order(cell_list_.order());
+    }
+  }
+  kind_ = Kind::kd_tree;
+  kd_tree_.build(domain, radius, points);
+  return adopt_order(kd_tree_.order());
+}
+
+// The set takes the structure's order, or keeps its own and the map both ways.
+template <int D>
+const std::vector<std::size_t>* NeighbourSearch<D>::adopt_order(
+    const std::vector<std::size_t>& order) {
+  if (!keep_order_) return &order;
+  order_ = order;
+  rank_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) rank_[order[k]] = k;
+  return nullptr;
+}
+
+template <int D>
+void NeighbourSearch<D>::for_each_pair_batch(
+    bool with_self, const std::function<void(simd::PairBatch<D>&)>& f) const {
+  if (kind_ == Kind::cell_list) {
+    if (batched_build_ != build_count_) {  // the coordinates, once per build
+      batches_.build(cell_list_, size_);
+      batched_build_ = build_count_;
+    }
+    // One walk for both orders (the test is per batch, not per pair).
+    return batches_.for_each_pair(cell_list_, with_self, [&](simd::PairBatch<D>& batch) {
+      if (sorted_apart()) batch.renumber(order_);
+      f(batch);
+    });
+  }
+  simd::PairBatch<D>& batch = serial_batch_;
+  batch.clear();
+  pairs_off_cells([&](std::size_t i, const auto& pairs) {
+    pairs([&](std::size_t j, const Vec<D>& dx) {
+      // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
+      if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
+    });
+    batch.hand_over_if_full(f);
+  });
+  batch.hand_over_rest(f);
+}
+
+#define PARTC_NEIGHBOUR_SEARCH_INSTANCE(prefix, D)                                        \
+  prefix class NeighbourSearch<D>;                                                        \
+  prefix const std::vector<std::size_t>* NeighbourSearch<D>::build_structure(             \
+      const Domain<D>&, double, const std::vector<Vec<D, double>>&);                      \
+  prefix const std::vector<std::size_t>* NeighbourSearch<D>::build_structure(             \
+      const Domain<D>&, double, const std::vector<Vec<D, float>>&)
+
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(extern template, 1);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(extern template, 2);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(extern template, 3);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(extern template, 4);
 
 }  // namespace partc

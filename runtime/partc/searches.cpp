@@ -1,7 +1,9 @@
 // partc/searches.cpp: the search structures for D = 1..4, compiled once
-// (search_instances.hpp says what that covers).
+// (search_instances.hpp says what that covers), and NeighbourSearch's
+// builds and packed pair walks (neighbour_search.hpp).
 #include "partc/brute_force.hpp"
 #include "partc/kd_tree.hpp"
+#include "partc/neighbour_search.hpp"
 #include "partc/ordered_cell_list.hpp"
 
 namespace partc {
@@ -9,5 +11,9 @@ namespace partc {
 PARTC_SEARCH_INSTANCES(template, BruteForce);
 PARTC_SEARCH_INSTANCES(template, KdTree);
 PARTC_SEARCH_INSTANCES(template, OrderedCellList);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(template, 1);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(template, 2);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(template, 3);
+PARTC_NEIGHBOUR_SEARCH_INSTANCE(template, 4);
 
 }  // namespace partc

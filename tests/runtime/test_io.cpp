@@ -575,10 +575,10 @@ TEST_CASE("VtkSeries keeps a .pvd that lists every frame so far", "[vtk]") {
   const std::string prefix = (directory / "run_P").string();
   partc::VtkSeries series(prefix);
   Set set = sample_set();
-  series.write(set, 0, 0.0);
+  series.write(partc::view_of("P", set), 0, 0.0);
   CHECK(read_xml(prefix + ".pvd").child("Collection").children.size() == 1);
   set.positions()[0][0] = 7;
-  series.write(set, 10, 0.25);
+  series.write(partc::view_of("P", set), 10, 0.25);
 
   const XmlElement pvd = read_xml(prefix + ".pvd");
   CHECK(pvd.attributes.at("type") == "Collection");
