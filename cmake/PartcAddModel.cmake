@@ -8,7 +8,9 @@
 #       generated model class, for C++ code that drives the model itself.
 #
 # Both regenerate the C++ whenever the .part file, a module it uses (partc
-# writes a depfile) or partc changes.
+# writes a depfile) or partc changes. partc_add_model reuses the precompiled
+# runtime headers of target partc_model_pch when the build has it
+# (PARTC_MODEL_PCH, the default).
 # PARTC_EXECUTABLE must name partc (a path or a generator expression).
 
 function(_partc_generate part_file out_file extra_flags)
@@ -36,6 +38,9 @@ function(partc_add_model target part_file)
   add_executable(${target} ${out})
   target_link_libraries(${target} PRIVATE partc_runtime)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror)
+  if(TARGET partc_model_pch)
+    target_precompile_headers(${target} REUSE_FROM partc_model_pch)
+  endif()
 endfunction()
 
 function(partc_add_model_library target part_file)

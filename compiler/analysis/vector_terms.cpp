@@ -1,8 +1,13 @@
-// Decides, per sum taken each pair once (Newton's third law), whether its
-// pairs are packed and its term computed on vectors of pairs: runs after
-// symmetry, whose pair walk the packing serves (a sum evaluated both ways
-// keeps per-particle queries). The pairs come from the search's walk or from
-// half Verlet lists alike (both have for_each_pair_batch).
+// Decides, per sum over neighbours, whether its pairs are packed and its term
+// computed on vectors of pairs: runs after symmetry, which says how the pairs
+// come. A sum taken each pair once (Newton's third law) gets them from the
+// search's pair walk or from half Verlet lists alike (both have
+// for_each_pair_batch), and from per-particle queries packed the same way
+// (NeighbourSearch::for_each_near_batch) when the search walks pairs
+// serially; a sum evaluated both ways, over its own set, from those packed
+// queries alone. Over another set, with Verlet lists' full lists, or summed
+// compensated (each particle's own terms in order, one at a time), a sum
+// taken both ways keeps the scalar queries.
 //
 // A term has a vector form when every node of its condition and body does:
 // reals and vecs (a vec is one vector per component), literals and params,
@@ -21,8 +26,10 @@
 // the double sums). A scalar term is computed in double whatever it says.
 #include "analysis/vector_terms.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "ir/constant.hpp"
 #include "ir/inline_calls.hpp"
@@ -136,7 +143,7 @@ std::string scalar_arithmetic(const Schedule& schedule) {
 }
 
 VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& acc,
-                     bool excludes_coincident) {
+                     bool newton, bool excludes_coincident) {
   const std::string in_double = scalar_arithmetic(st.schedule);
   if (acc.reduction != Reduction::Sum)
     return {false, std::string("scalar: a ") + reduction_name(acc.reduction) +
@@ -155,9 +162,13 @@ VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& 
   if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle + in_double};
   const bool on_floats = st.schedule.arithmetic == Precision::Float;
   return {true,
-          std::string("on vectors of pairs: each point's pairs packed (compress-stores), the "
-                      "condition and term computed a vector of pairs at a time, then given to "
-                      "both particles") +
+          std::string(newton ? "on vectors of pairs: each point's pairs packed (compress-stores; "
+                               "per-particle queries packed alike when the search walks pairs "
+                               "serially), the condition and term computed a vector of pairs at "
+                               "a time, then given to both particles (to i alone from queries)"
+                             : "on vectors of neighbours: each particle's neighbours packed, the "
+                               "condition and term computed a vector of neighbours at a time, "
+                               "then summed into the particle in its query's order") +
               (excludes_coincident ? "; i's pair with itself left out, as the condition "
                                      "excludes |dx| = 0"
                                    : "") +
@@ -175,19 +186,46 @@ bool excludes_coincident(const CoincidenceReport& coincident, int id) {
   return fact != coincident.end() && fact->second.excluded;
 }
 
+// Whether a sum taken both ways can be packed from per-particle queries:
+// over neighbours of its statement's own set (the query goes by index), from
+// a search (Verlet lists' full lists have no packed walk), not compensated.
+bool packs_queries(const Statement& st, const Accumulate& acc,
+                   const NeighbourhoodReport& neighbourhoods) {
+  return st.observable < 0 && !st.solve_operator && !st.schedule.skin &&
+         !st.schedule.compensated &&
+         st.labels[static_cast<std::size_t>(acc.label)].set == st.set &&
+         neighbourhoods.at(acc.id).kind == SearchFact::Kind::Neighbours;
+}
+
+// The sums a statement's particle loop takes, not those inside another's term.
+std::vector<const Accumulate*> outermost_sums(const Statement& st) {
+  std::vector<const Accumulate*> all = accumulations_in(st), nested;
+  for (const Accumulate* acc : all)
+    for (const Expr& e : {acc->condition, acc->body})
+      if (e)
+        for (const Accumulate* inner : accumulations_in(e)) nested.push_back(inner);
+  std::vector<const Accumulate*> outermost;
+  for (const Accumulate* acc : all)
+    if (std::find(nested.begin(), nested.end(), acc) == nested.end()) outermost.push_back(acc);
+  return outermost;
+}
+
 }  // namespace
 
-VectorTermReport find_vector_terms(const Model& model, const PairSymmetryReport& symmetry,
+VectorTermReport find_vector_terms(const Model& model, const NeighbourhoodReport& neighbourhoods,
+                                   const PairSymmetryReport& symmetry,
                                    const CoincidenceReport& coincident, bool enabled) {
   VectorTermReport report;
   for (const Stage& stage : model.stages)
     for (const Statement& st : stage.statements)
-      for (const Accumulate* acc : accumulations_in(st)) {
+      for (const Accumulate* acc : outermost_sums(st)) {
         const auto pairs = symmetry.find(acc->id);
-        if (pairs == symmetry.end() || !pairs->second.newton) continue;
-        report[acc->id] = enabled ? judge(model, st, *acc, excludes_coincident(coincident, acc->id))
-                                  : VectorTermFact{false, "scalar, as --no-simd asks" +
-                                                              scalar_arithmetic(st.schedule)};
+        const bool newton = pairs != symmetry.end() && pairs->second.newton;
+        if (!newton && !packs_queries(st, *acc, neighbourhoods)) continue;
+        report[acc->id] =
+            enabled ? judge(model, st, *acc, newton, excludes_coincident(coincident, acc->id))
+                    : VectorTermFact{false,
+                                     "scalar, as --no-simd asks" + scalar_arithmetic(st.schedule)};
       }
   return report;
 }

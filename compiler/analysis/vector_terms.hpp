@@ -6,6 +6,7 @@
 #include <string>
 
 #include "analysis/coincident_pairs.hpp"
+#include "analysis/neighbourhood.hpp"
 #include "analysis/symmetry.hpp"
 #include "ir/ir.hpp"
 
@@ -26,9 +27,12 @@ struct VectorTermFact {
 
 using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate::id
 
-// For each sum over neighbours taken each pair once (symmetry's newton);
-// `enabled` false (--no-simd) keeps every one scalar.
-VectorTermReport find_vector_terms(const ir::Model& model, const PairSymmetryReport& symmetry,
+// For each sum over neighbours taken each pair once (symmetry's newton), and
+// each taken both ways whose per-particle queries can be packed (see
+// vector_terms.cpp); `enabled` false (--no-simd) keeps every one scalar.
+VectorTermReport find_vector_terms(const ir::Model& model,
+                                   const NeighbourhoodReport& neighbourhoods,
+                                   const PairSymmetryReport& symmetry,
                                    const CoincidenceReport& coincident, bool enabled);
 
 }  // namespace partc

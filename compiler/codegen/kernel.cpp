@@ -398,6 +398,9 @@ void ModelEmitter::kernel(const Kernel& k) {
     if (facts_.fast_sums.count(acc->id)) fast_sum(*acc, st, names, locals, count);
   std::vector<const Loop*> per_particle;
   std::string pairs_once;  // names the run-time choice of a search's pair walk
+  const auto self_pair_comment = [&](const Loop& l) {
+    if (!batch_self_pair(l)) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
+  };
   for (const Loop& l : loops) {
     if (!l.once && l.kind == SearchFact::Kind::Neighbours && k.sink.empty())
       linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->" : l.searched + ".");
@@ -405,24 +408,45 @@ void ModelEmitter::kernel(const Kernel& k) {
       loop(l, st, names);
     } else if (l.kind == SearchFact::Kind::Neighbours && half_lists(st)) {
       const std::string walk = lists_.at(&st) + "->for_each_pair";
-      if (vector_terms(l))
-        batch_pass(l, names, count, locals, walk + "_batch", k.name);
-      else
+      if (vector_terms(l)) {
+        const std::string terms = batch_kernel(l, names, count, locals, k.name, BatchWalks::pairs);
+        self_pair_comment(l);
+        linef("{}_batch({}, {});", walk, batch_self_pair(l), terms);
+      } else {
         pair_pass(l, names, count, locals, walk, k.name);
+      }
       for (const Accumulate* acc : l.members)
         names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
       const std::string& search = l.searched;
+      if (vector_terms(l)) {
+        const std::string terms =
+            batch_kernel(l, names, count, locals, k.name, BatchWalks::pairs_or_queries);
+        const bool self = batch_self_pair(l);
+        line("// Each pair once when the search walks pairs in parallel, or the set is small;");
+        line("// else each particle's neighbours, packed the same way.");
+        self_pair_comment(l);
+        linef("if ({}.pairs_once())", search);
+        linef("{}.for_each_pair_batch({}, {});", search, self, terms);
+        line("else");
+        linef("{}.for_each_near_batch({}, {});", search, self, terms);
+        for (const Accumulate* acc : l.members)
+          names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+        continue;
+      }
       pairs_once = locals.fresh("pairs_once");
       line("// Each pair once when the search walks pairs in parallel, or the set is small.");
       linef("const bool {} = {}.pairs_once();", pairs_once, search);
       linef("if ({}) {{", pairs_once);
-      if (vector_terms(l))
-        batch_pass(l, names, count, locals, search + ".for_each_pair_batch", k.name);
-      else
-        pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
+      pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
       line("}");
       per_particle.push_back(&l);
+    } else if (l.kind == SearchFact::Kind::Neighbours && packs_queries(l, st) && vector_terms(l)) {
+      const std::string terms = batch_kernel(l, names, count, locals, k.name, BatchWalks::queries);
+      self_pair_comment(l);
+      linef("{}.for_each_near_batch({}, {});", l.searched, batch_self_pair(l), terms);
+      for (const Accumulate* acc : l.members)
+        names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
     } else {
       per_particle.push_back(&l);
     }
@@ -692,6 +716,10 @@ bool ModelEmitter::walks_pairs(const Statement& st) const {
   return std::any_of(uses.accumulations.begin(), uses.accumulations.end(), [&](const Accumulate* acc) {
     return facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours;
   });
+}
+
+bool ModelEmitter::packs_queries(const Loop& l, const Statement& st) const {
+  return !st.schedule.skin && !st.schedule.compensated && l.set == st.set && !l.searched.empty();
 }
 
 bool ModelEmitter::newton_pairs(const Statement& st) const {

@@ -937,7 +937,7 @@ void ModelEmitter::state() {
     line("bool check_accuracy_ = false;  // --check-accuracy");
   }
   for (const auto& [id, sums] : pair_sums_)
-    linef("std::vector<{}> {};  // per particle, a sum over each pair once", sums.second,
+    linef("std::vector<{}> {};  // per particle, a sum its walk fills", sums.second,
           sums.first);
   for (const auto& [key, buffer] : buffers_)
     linef("std::vector<{}> {};  // new values of {}, {}", buffer.second, buffer.first,

@@ -262,11 +262,19 @@ class ModelEmitter {
   void pair_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
                  NameTable& locals, const std::string& walk, const std::string& kernel);
   std::string pair_sums_member(const Accumulate& acc, const std::string& kernel);
-  // codegen/pair_batch_pass.cpp: pair_pass on vectors of pairs, for a loop
-  // whose every sum has a vector form (vector_terms).
+  // codegen/pair_batch_pass.cpp: the sums of a loop whose every sum has a
+  // vector form (vector_terms), on vectors of pairs: a lambda, named by the
+  // return value, for the walks that will call it (each pair once, packed
+  // queries, or either, chosen at run time), which fill the loop's members
+  // (pair_sums_); whether those walks must give i's pair with itself.
   bool vector_terms(const Loop& l) const;
-  void batch_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-                  NameTable& locals, const std::string& walk, const std::string& kernel);
+  enum class BatchWalks { pairs, pairs_or_queries, queries };
+  std::string batch_kernel(const Loop& l, const ExpressionNames& names, const std::string& count,
+                           NameTable& locals, const std::string& kernel, BatchWalks walks);
+  bool batch_self_pair(const Loop& l) const;
+  // Whether a loop's sums come from a search's packed per-particle queries
+  // (for_each_near_batch) when not from its pair walk.
+  bool packs_queries(const Loop& l, const Statement& st) const;
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
   // codegen/fast_sum.cpp: a dense sum by the fast multipole method, before the
   // particle loop; its result read as names.accumulators[acc.id].

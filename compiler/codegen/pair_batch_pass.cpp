@@ -1,15 +1,21 @@
-// Emits the pair walk of sums taken each pair once whose terms have a vector
-// form (analysis/vector_terms.cpp): the search or the half Verlet lists pack
-// the pairs into batches (for_each_pair_batch), a vector loop computes each sum's
-// term for a vector of pairs at a time (codegen/simd_term.cpp) into columns,
-// and a scalar loop then gives each pair's term to i and +-term to j, into
-// the same per-particle member vectors the scalar walk (pair_pass) fills.
-// i's terms arrive one by one rather than summed first, so the totals differ
-// from the scalar walk's by roundings, not by thread count. With float
+// Emits the batch kernel of sums over neighbours whose terms have a vector
+// form (analysis/vector_terms.cpp), a lambda the walks that pack pairs into
+// batches call: a search's or half Verlet lists' pair walk
+// (for_each_pair_batch, each pair once) and a search's packed per-particle
+// queries (for_each_near_batch, each particle's neighbours). A vector loop
+// computes each sum's term for a vector of pairs at a time
+// (codegen/simd_term.cpp) into columns, and a scalar loop then gives each
+// pair's term to i, and +-term to j when the batch holds each pair once,
+// into the same per-particle member vectors the scalar walk (pair_pass)
+// fills. One kernel serves both walks, so it is compiled once. From the pair
+// walk, i's terms arrive one by one rather than summed first, so the totals
+// differ from the scalar walk's by roundings, not by thread count. With float
 // arithmetic (the members share it: statement fusion sees to that) the vector
 // loop runs on float lanes, twice the pairs a step, into float columns, and
 // the scatter adds each float term into the double sums.
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "codegen/model_emitter.hpp"
 #include "codegen/simd_term.hpp"
@@ -24,30 +30,39 @@ bool ModelEmitter::vector_terms(const Loop& l) const {
   return true;
 }
 
-void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const std::string& count,
-                              NameTable& locals, const std::string& walk,
-                              const std::string& kernel) {
+std::string ModelEmitter::batch_kernel(const Loop& l, const ExpressionNames& names,
+                                       const std::string& count, NameTable& locals,
+                                       const std::string& kernel, BatchWalks walks) {
   const std::string i = names.labels[0];
   const std::string j = names.labels[l.members.front()->label];
-  const std::string batch = locals.fresh("pairs"), tag = locals.fresh("d");
-  const std::string k = locals.fresh("k");
-  bool self_pair = false;
-  for (const Accumulate* acc : l.members) {
+  const std::string name = locals.fresh("batch_terms"), batch = locals.fresh("pairs");
+  const std::string tag = locals.fresh("d"), k = locals.fresh("k");
+  for (const Accumulate* acc : l.members)
     linef("{}.assign({}, {});", pair_sums_member(*acc, kernel), count, identity(*acc));
-    self_pair = self_pair || facts_.vector_terms.at(acc->id).self_pair;
-  }
   const Precision arithmetic = facts_.vector_terms.at(l.members.front()->id).arithmetic;
   const bool floats = arithmetic == Precision::Float;
-  line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
-  line("// together (partc/simd), then given to i and j.");
+  switch (walks) {
+    case BatchWalks::pairs:
+      line("// Each pair once (Newton's third law), on vectors of pairs: a batch's terms computed");
+      line("// together (partc/simd), then given to i and j.");
+      break;
+    case BatchWalks::pairs_or_queries:
+      line("// Each pair once (Newton's third law), or each particle's neighbours, on vectors of");
+      line("// pairs: a batch's terms computed together (partc/simd), then given to i, and to j");
+      line("// when the batch holds each pair once.");
+      break;
+    case BatchWalks::queries:
+      line("// Each particle's neighbours, on vectors of pairs: a batch's terms computed together");
+      line("// (partc/simd), then summed into i in its query's order.");
+      break;
+  }
   if (floats) {
     line("// The terms on float lanes, twice the pairs a vector (schedule: arithmetic = float),");
     line("// each added into the double sums.");
   } else {
     line("// The terms on double lanes (schedule: arithmetic = double).");
   }
-  if (!self_pair) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
-  linef("{}({}, [&](partc::simd::PairBatch<{}>& {}) {{", walk, self_pair, m_.dim, batch);
+  linef("const auto {} = [&](partc::simd::PairBatch<{}>& {}) {{", name, m_.dim, batch);
   line("namespace hn = partc::simd::hn;");
   linef("const partc::simd::{} {};", floats ? "Float" : "Real", tag);
   const SimdTermCode code =
@@ -78,7 +93,10 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
       linef("hn::StoreU({}, {}, {} + {});", code.terms[a][c], tag, columns[a][c], k);
   line("}");
   linef("for (std::size_t {0} = 0; {0} < {1}.count(); ++{0}) {{", k, batch);
-  linef("const std::size_t {} = {}.i()[{}], {} = {}.j()[{}];", i, batch, k, j, batch, k);
+  if (walks == BatchWalks::queries)
+    linef("const std::size_t {} = {}.i()[{}];", i, batch, k);
+  else
+    linef("const std::size_t {} = {}.i()[{}], {} = {}.j()[{}];", i, batch, k, j, batch, k);
   for (std::size_t a = 0; a < l.members.size(); ++a) {
     const Accumulate& acc = *l.members[a];
     std::vector<std::string> parts;
@@ -88,11 +106,20 @@ void ModelEmitter::batch_pass(const Loop& l, const ExpressionNames& names, const
                                  : parts.front();
     const std::string& sums = pair_sums_.at(acc.id).first;
     linef("{}[{}] += {};", sums, i, term);
-    linef("if ({2} != {1}) {0}[{2}] {3}= {4};", sums, i, j,
-          facts_.symmetry.at(acc.id).sign > 0 ? "+" : "-", term);
+    if (walks == BatchWalks::queries) continue;
+    linef("if ({}{} != {}) {}[{}] {}= {};",
+          walks == BatchWalks::pairs_or_queries ? batch + ".each_pair_once() && " : "", j, i, sums,
+          j, facts_.symmetry.at(acc.id).sign > 0 ? "+" : "-", term);
   }
   line("}");
-  line("});");
+  line("};");
+  return name;
+}
+
+bool ModelEmitter::batch_self_pair(const Loop& l) const {
+  return std::any_of(l.members.begin(), l.members.end(), [&](const Accumulate* acc) {
+    return facts_.vector_terms.at(acc->id).self_pair;
+  });
 }
 
 }  // namespace partc::codegen

@@ -46,9 +46,10 @@ void run_passes(SourceFile& file, const SceneOptions& scene, const PassOptions& 
   // Terms that are NaN or Inf for coincident particles (warnings, at the end),
   // and conditions that keep coincident pairs out.
   c.coincident = find_coincident_pairs(c.model, file.text());
-  // Which of the sums taken each pair once compute their terms on vectors of
-  // pairs, and whether their walk needs i's pair with itself.
-  c.facts.vector_terms = find_vector_terms(c.model, c.facts.symmetry, c.coincident, passes.simd);
+  // Which sums over neighbours compute their terms on vectors of pairs, and
+  // whether their walk needs i's pair with itself.
+  c.facts.vector_terms = find_vector_terms(c.model, c.facts.neighbourhoods, c.facts.symmetry,
+                                           c.coincident, passes.simd);
   // A solve's matrix: dense or sparse as its sums' neighbourhoods say.
   c.facts.linear_operators = find_linear_operators(c.model, c.facts.neighbourhoods);
   // The schedule can only be judged once neighbourhood sums are known; so

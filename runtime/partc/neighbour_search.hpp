@@ -33,6 +33,7 @@
 // neighbour; the set's arrays are then read out of spatial order.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -166,6 +167,19 @@ class NeighbourSearch {
   // Compiled once in the runtime library (searches.cpp), not with each
   // model: f is called through std::function once a batch (tens of pairs).
   void for_each_pair_batch(bool with_self,
+                           const std::function<void(simd::PairBatch<D>&)>& f) const;
+
+  // for_each_near's neighbours packed the same way, for sums that take each
+  // pair both ways, or that obey Newton's third law where the pair walk runs
+  // serially (pairs_once false): f(batch) for batches of consecutive
+  // particles i (the set's order), each i with every j that for_each_near(i)
+  // reports, in its order and with its dx, the pair (i, i) at dx 0 only
+  // with_self; batch.each_pair_once() is false. A particle's neighbours are
+  // all in one batch, and the set's blocks run in parallel (f is called from
+  // several threads at once, never for one i twice), so a sum into i alone
+  // is as independent of the thread count as a per-particle query's.
+  // Compiled in searches.cpp, as for_each_pair_batch.
+  void for_each_near_batch(bool with_self,
                            const std::function<void(simd::PairBatch<D>&)>& f) const;
 
   // Whether such sums should take for_each_pair over per-particle queries:
@@ -314,6 +328,7 @@ class NeighbourSearch {
   mutable simd::PairBatches<D> batches_;
   mutable std::size_t batched_build_ = 0;
   mutable simd::PairBatch<D> serial_batch_;
+  mutable std::vector<simd::PairBatch<D>> near_batches_;  // for_each_near_batch's, one per block
 };
 
 template <int D>
@@ -390,6 +405,30 @@ void NeighbourSearch<D>::for_each_pair_batch(
     batch.hand_over_if_full(f);
   });
   batch.hand_over_rest(f);
+}
+
+template <int D>
+void NeighbourSearch<D>::for_each_near_batch(
+    bool with_self, const std::function<void(simd::PairBatch<D>&)>& f) const {
+  // Blocks of consecutive particles, a few per thread (a loaded thread leaves
+  // its share to the others); how many changes no result.
+  const std::size_t blocks = std::clamp<std::size_t>(
+      size_ / min_parallel(LoopWork::heavy), 1, 8 * static_cast<std::size_t>(max_threads()));
+  near_batches_.resize(blocks);
+  parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
+    simd::PairBatch<D>& batch = near_batches_[b];
+    batch.clear();
+    batch.set_slab(b);
+    batch.set_each_pair_once(false);
+    for (std::size_t i = b * size_ / blocks, stop = (b + 1) * size_ / blocks; i < stop; ++i) {
+      for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
+        // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
+        if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
+      });
+      batch.hand_over_if_full(f);
+    }
+    batch.hand_over_rest(f);
+  });
 }
 
 #define PARTC_NEIGHBOUR_SEARCH_INSTANCE(prefix, D)                                        \

@@ -73,6 +73,10 @@ class PairBatch {
   // one slab's batches are handed over on one thread, in the walk's order.
   std::size_t slab() const { return slab_; }
   void set_slab(std::size_t a) { slab_ = a; }
+  // Whether the batch holds each pair once (a pair walk: j takes its term
+  // too) or particles' whole neighbourhoods (packed queries: i alone).
+  bool each_pair_once() const { return each_pair_once_; }
+  void set_each_pair_once(bool once) { each_pair_once_ = once; }
   template <class T = double>
   void columns(std::size_t n) {
     Columns<T>& of_t = std::get<Columns<T>>(columns_);
@@ -212,6 +216,7 @@ class PairBatch {
 
   std::size_t count_ = 0;
   std::size_t slab_ = 0;
+  bool each_pair_once_ = true;
   std::vector<std::uint64_t> i_, j_;
   std::array<std::vector<double>, D> dx_;
   std::vector<double> r2_;
