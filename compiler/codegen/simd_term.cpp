@@ -40,17 +40,16 @@ struct VecValue {
 
 class Emitter {
  public:
-  // `temporaries` numbers the t1, t2, ... of every emitter of one loop.
+  // The emitters of one loop share `locals`, so their temporaries' names differ.
   Emitter(const Model& model, const ExpressionNames& names, NameTable& locals, std::string batch,
-          std::string k, std::string tag, bool floats, int& temporaries)
+          std::string k, std::string tag, bool floats)
       : model_(model),
         names_(names),
         locals_(locals),
         batch_(std::move(batch)),
         k_(std::move(k)),
         d_(std::move(tag)),
-        floats_(floats),
-        temporaries_(temporaries) {}
+        floats_(floats) {}
 
   // Later loads from pair k on (the second half of a float vector's pairs).
   Emitter& at(const std::string& k) {
@@ -160,13 +159,36 @@ class Emitter {
   std::string declare(const std::string& value) {
     auto [it, fresh] = declared_.emplace(value, "");
     if (fresh) {
-      it->second = locals_.fresh("t" + std::to_string(++temporaries_));
+      it->second = locals_.fresh(temporary_name(value));
       lines.push_back(fmt::format("const auto {} = {};", it->second, value));
     }
     return it->second;
   }
 
  private:
+  // What a temporary holds, from the operation computing it (quotient,
+  // masked, below; variable() names its gathers, rho_j); NameTable::fresh
+  // numbers repeats.
+  static std::string temporary_name(const std::string& value) {
+    static const std::map<std::string, const char*> nouns = {
+        {"Neg", "minus"},        {"Add", "sum"},         {"Sub", "difference"},
+        {"Mul", "product"},      {"MulAdd", "dot"},      {"Div", "quotient"},
+        {"Exp", "exponential"},  {"Log", "logarithm"},   {"Sqrt", "root"},
+        {"Abs", "magnitude"},    {"Min", "least"},       {"Max", "greatest"},
+        {"Tanh", "tanh_value"},  {"Sin", "sine"},        {"Cos", "cosine"},
+        {"Lt", "below"},         {"Le", "at_most"},      {"Gt", "above"},
+        {"Ge", "at_least"},      {"Eq", "equal"},        {"Ne", "unequal"},
+        {"And", "both"},         {"Or", "either"},       {"Not", "negation"},
+        {"IfThenElse", "chosen"}, {"IfThenElseZero", "masked"}};
+    const std::string hn = "hn::";
+    if (value.rfind(hn, 0) == 0) {
+      const auto noun = nouns.find(value.substr(hn.size(), value.find('(') - hn.size()));
+      if (noun != nouns.end()) return noun->second;
+    }
+    if (value.rfind("partc::simd::demote_mask(", 0) == 0) return "condition";
+    return "value";
+  }
+
   // A named vector loaded or computed once per vector of pairs (dx_0, r2, ...).
   std::string named(const std::string& name, const std::string& value) {
     auto [it, fresh] = declared_.emplace(value, "");
@@ -183,8 +205,7 @@ class Emitter {
     auto [it, fresh] = declared_.emplace(value, "");
     if (fresh) {
       const std::string name = named_scalar(scalar);
-      it->second = !name.empty() ? locals_.fresh(name + "_lanes")
-                                 : locals_.fresh("t" + std::to_string(++temporaries_));
+      it->second = locals_.fresh(!name.empty() ? name + "_lanes" : "constant");
       setup.push_back(fmt::format("const auto {} = {};", it->second, value));
     }
     return it->second;
@@ -253,21 +274,25 @@ class Emitter {
   VecValue variable(const VarRef& v) {
     const Variable& var = model_.sets[v.set].vars[v.var];
     const std::string array = names_.array(v.set, v.var);
+    const std::string of = v.label == 0 ? "i" : "j";  // rho_j, v_i_0
     VecValue value;
     if (var.type == Type::Real) {
-      value.components.push_back(declare(
-          fmt::format("partc::simd::gather({}, {}.data(), {})", d_, array, index(v.label, 1))));
+      value.components.push_back(named(
+          array + "_" + of, fmt::format("partc::simd::gather({}, {}.data(), {})", d_, array,
+                                        index(v.label, 1))));
       return value;
     }
     const std::string at = index(v.label, model_.dim);
     for (int c = 0; c < model_.dim; ++c) {
       const std::string offset =
           c == 0 ? at
-                 : declare(fmt::format(
-                       "hn::Add({}, hn::Set(hn::RebindToSigned<decltype({})>(), {}))", at, d_, c));
-      value.components.push_back(
-          declare(fmt::format("partc::simd::gather({}, reinterpret_cast<const {}*>({}.data()), {})",
-                              d_, precision_name(var.storage), array, offset)));
+                 : named(at + "_" + std::to_string(c),
+                         fmt::format("hn::Add({}, hn::Set(hn::RebindToSigned<decltype({})>(), {}))",
+                                     at, d_, c));
+      value.components.push_back(named(
+          array + "_" + of + "_" + std::to_string(c),
+          fmt::format("partc::simd::gather({}, reinterpret_cast<const {}*>({}.data()), {})", d_,
+                      precision_name(var.storage), array, offset)));
     }
     return value;
   }
@@ -364,7 +389,6 @@ class Emitter {
   const std::string d_;
   const bool floats_;                            // float lanes (arithmetic = float), else double
   std::map<std::string, std::string> declared_;  // value -> its local
-  int& temporaries_;
   std::string given_norm_of_dx_;
 };
 
@@ -375,8 +399,7 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
                              const std::string& batch, const std::string& k, const std::string& tag,
                              Precision arithmetic) {
   const bool floats = arithmetic == Precision::Float;
-  int temporaries = 0;
-  Emitter emit(model, names, locals, batch, k, tag, floats, temporaries);
+  Emitter emit(model, names, locals, batch, k, tag, floats);
   // On float lanes each condition is still decided on double lanes, for the
   // two vectors of doubles a vector of floats covers, so that the pairs that
   // count are the ones double arithmetic counts: a float comparison moves a
@@ -384,7 +407,7 @@ SimdTermCode emit_simd_terms(const std::vector<const Accumulate*>& accs, const M
   // points: one pair counted otherwise, a whole term wrong).
   const std::string wide = floats ? locals.fresh("wide") : "";
   const std::string k_high = floats ? locals.fresh(k + "_high") : "";
-  Emitter decide(model, names, locals, batch, k, wide, false, temporaries);
+  Emitter decide(model, names, locals, batch, k, wide, false);
   SimdTermCode code;
   if (floats) {
     code.setup.push_back(fmt::format("const partc::simd::Real {};", wide));
