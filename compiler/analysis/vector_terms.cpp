@@ -143,7 +143,7 @@ std::string scalar_arithmetic(const Schedule& schedule) {
 }
 
 VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& acc,
-                     bool newton, bool excludes_coincident) {
+                     bool newton, bool queries, bool excludes_coincident) {
   const std::string in_double = scalar_arithmetic(st.schedule);
   if (acc.reduction != Reduction::Sum)
     return {false, std::string("scalar: a ") + reduction_name(acc.reduction) +
@@ -162,13 +162,17 @@ VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& 
   if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle + in_double};
   const bool on_floats = st.schedule.arithmetic == Precision::Float;
   return {true,
-          std::string(newton ? "on vectors of pairs: each point's pairs packed (compress-stores; "
-                               "per-particle queries packed alike when the search walks pairs "
-                               "serially), the condition and term computed a vector of pairs at "
-                               "a time, then given to both particles (to i alone from queries)"
-                             : "on vectors of neighbours: each particle's neighbours packed, the "
-                               "condition and term computed a vector of neighbours at a time, "
-                               "then summed into the particle in its query's order") +
+          std::string(!newton ? "on vectors of neighbours: each particle's neighbours packed, the "
+                                "condition and term computed a vector of neighbours at a time, "
+                                "then summed into the particle in its query's order"
+                      : queries ? "on vectors of pairs: each point's pairs packed (compress-stores; "
+                                  "per-particle queries packed alike when the search walks pairs "
+                                  "serially), the condition and term computed a vector of pairs "
+                                  "at a time, then given to both particles (to i alone from "
+                                  "queries)"
+                                : "on vectors of pairs: each point's pairs packed "
+                                  "(compress-stores), the condition and term computed a vector "
+                                  "of pairs at a time, then given to both particles") +
               (excludes_coincident ? "; i's pair with itself left out, as the condition "
                                      "excludes |dx| = 0"
                                    : "") +
@@ -178,7 +182,7 @@ VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& 
                            "double, each term added into double sums"
                          : "double lanes") +
               " (" + st.schedule.arithmetic_reason + ")",
-          !excludes_coincident, st.schedule.arithmetic};
+          !excludes_coincident, st.schedule.arithmetic, queries};
 }
 
 bool excludes_coincident(const CoincidenceReport& coincident, int id) {
@@ -221,11 +225,13 @@ VectorTermReport find_vector_terms(const Model& model, const NeighbourhoodReport
       for (const Accumulate* acc : outermost_sums(st)) {
         const auto pairs = symmetry.find(acc->id);
         const bool newton = pairs != symmetry.end() && pairs->second.newton;
-        if (!newton && !packs_queries(st, *acc, neighbourhoods)) continue;
+        const bool queries = packs_queries(st, *acc, neighbourhoods);
+        if (!newton && !queries) continue;
         report[acc->id] =
-            enabled ? judge(model, st, *acc, newton, excludes_coincident(coincident, acc->id))
-                    : VectorTermFact{false,
-                                     "scalar, as --no-simd asks" + scalar_arithmetic(st.schedule)};
+            enabled
+                ? judge(model, st, *acc, newton, queries, excludes_coincident(coincident, acc->id))
+                : VectorTermFact{false,
+                                 "scalar, as --no-simd asks" + scalar_arithmetic(st.schedule)};
       }
   return report;
 }

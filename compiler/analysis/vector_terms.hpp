@@ -23,6 +23,11 @@ struct VectorTermFact {
   // The lanes the term is computed on (the statement's schedule: arithmetic);
   // either way its values are added into double sums.
   ir::Precision arithmetic = ir::Precision::Double;
+  // Whether the sum's per-particle queries can be packed the same way
+  // (NeighbourSearch::for_each_near_batch): its statement's own set, a
+  // search (not Verlet lists), not compensated. A Newton sum takes them
+  // where its search walks pairs serially; any other sum has a fact only then.
+  bool packed_queries = false;
 };
 
 using VectorTermReport = std::map<int, VectorTermFact>;  // keyed by Accumulate::id

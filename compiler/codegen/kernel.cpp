@@ -401,6 +401,11 @@ void ModelEmitter::kernel(const Kernel& k) {
   const auto self_pair_comment = [&](const Loop& l) {
     if (!batch_self_pair(l)) line("// i's pair with itself left out: the condition excludes |dx| = 0.");
   };
+  // The particle loop reads the sums a walk filled before it.
+  const auto read_pair_sums = [&](const Loop& l) {
+    for (const Accumulate* acc : l.members)
+      names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+  };
   for (const Loop& l : loops) {
     if (!l.once && l.kind == SearchFact::Kind::Neighbours && k.sink.empty())
       linef("{}note_walk();", st.schedule.skin ? lists_.at(&st) + "->" : l.searched + ".");
@@ -415,11 +420,10 @@ void ModelEmitter::kernel(const Kernel& k) {
       } else {
         pair_pass(l, names, count, locals, walk, k.name);
       }
-      for (const Accumulate* acc : l.members)
-        names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+      read_pair_sums(l);
     } else if (l.kind == SearchFact::Kind::Neighbours && newton_pairs(st)) {
       const std::string& search = l.searched;
-      if (vector_terms(l)) {
+      if (vector_terms(l) && packed_queries(l)) {
         const std::string terms =
             batch_kernel(l, names, count, locals, k.name, BatchWalks::pairs_or_queries);
         const bool self = batch_self_pair(l);
@@ -430,8 +434,7 @@ void ModelEmitter::kernel(const Kernel& k) {
         linef("{}.for_each_pair_batch({}, {});", search, self, terms);
         line("else");
         linef("{}.for_each_near_batch({}, {});", search, self, terms);
-        for (const Accumulate* acc : l.members)
-          names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+        read_pair_sums(l);
         continue;
       }
       pairs_once = locals.fresh("pairs_once");
@@ -441,12 +444,11 @@ void ModelEmitter::kernel(const Kernel& k) {
       pair_pass(l, names, count, locals, search + ".for_each_pair", k.name);
       line("}");
       per_particle.push_back(&l);
-    } else if (l.kind == SearchFact::Kind::Neighbours && packs_queries(l, st) && vector_terms(l)) {
+    } else if (l.kind == SearchFact::Kind::Neighbours && vector_terms(l) && packed_queries(l)) {
       const std::string terms = batch_kernel(l, names, count, locals, k.name, BatchWalks::queries);
       self_pair_comment(l);
       linef("{}.for_each_near_batch({}, {});", l.searched, batch_self_pair(l), terms);
-      for (const Accumulate* acc : l.members)
-        names.accumulators[acc->id] = pair_sums_.at(acc->id).first + "[" + i + "]";
+      read_pair_sums(l);
     } else {
       per_particle.push_back(&l);
     }
@@ -716,10 +718,6 @@ bool ModelEmitter::walks_pairs(const Statement& st) const {
   return std::any_of(uses.accumulations.begin(), uses.accumulations.end(), [&](const Accumulate* acc) {
     return facts_.neighbourhoods.at(acc->id).kind == SearchFact::Kind::Neighbours;
   });
-}
-
-bool ModelEmitter::packs_queries(const Loop& l, const Statement& st) const {
-  return !st.schedule.skin && !st.schedule.compensated && l.set == st.set && !l.searched.empty();
 }
 
 bool ModelEmitter::newton_pairs(const Statement& st) const {

@@ -272,9 +272,9 @@ class ModelEmitter {
   std::string batch_kernel(const Loop& l, const ExpressionNames& names, const std::string& count,
                            NameTable& locals, const std::string& kernel, BatchWalks walks);
   bool batch_self_pair(const Loop& l) const;
-  // Whether a loop's sums come from a search's packed per-particle queries
-  // (for_each_near_batch) when not from its pair walk.
-  bool packs_queries(const Loop& l, const Statement& st) const;
+  // Whether every sum of the loop can take packed per-particle queries
+  // (VectorTermFact::packed_queries).
+  bool packed_queries(const Loop& l) const;
   void assignment(const Statement& st, const ExpressionNames& names, const std::string& buffer);
   // codegen/fast_sum.cpp: a dense sum by the fast multipole method, before the
   // particle loop; its result read as names.accumulators[acc.id].

@@ -116,6 +116,12 @@ std::string ModelEmitter::batch_kernel(const Loop& l, const ExpressionNames& nam
   return name;
 }
 
+bool ModelEmitter::packed_queries(const Loop& l) const {
+  return std::all_of(l.members.begin(), l.members.end(), [&](const Accumulate* acc) {
+    return facts_.vector_terms.at(acc->id).packed_queries;
+  });
+}
+
 bool ModelEmitter::batch_self_pair(const Loop& l) const {
   return std::any_of(l.members.begin(), l.members.end(), [&](const Accumulate* acc) {
     return facts_.vector_terms.at(acc->id).self_pair;

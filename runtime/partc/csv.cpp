@@ -371,10 +371,13 @@ void check_known_columns(const CsvTable& table, const std::vector<std::string>& 
           "unknown column " + detail::quoted(table.header[c]) + "; the columns are " + join(known));
 }
 
-// The columns of variable `name` (all present or none, the positions always),
-// each value one the variable can hold.
-void check_variable_columns(const CsvTable& table, const char* name,
-                            const std::vector<std::string>& columns, StoredAs stored) {
+// The CSV columns of one variable (all present or none, the positions
+// always), each value one the variable can hold.
+void check_variable_columns(const CsvTable& table, const ColumnView& variable) {
+  const char* name = variable.name;
+  const StoredAs stored = stored_as(variable);
+  const std::vector<std::string> columns =
+      csv_column_names(name, variable.is_vec, variable.components);
   for (const auto& column : columns) {
     const int found = table.column(column);
     if (found < 0) {
@@ -427,10 +430,7 @@ void check_ids(const CsvTable& table, std::size_t c) {
 
 void check_loadable(const CsvTable& table, const SetView& set) {
   check_known_columns(table, csv_columns_of(set));
-  for (const ColumnView& column : set.columns)
-    check_variable_columns(table, column.name,
-                           csv_column_names(column.name, column.is_vec, column.components),
-                           stored_as(column));
+  for (const ColumnView& column : set.columns) check_variable_columns(table, column);
   const int id_column = table.column("id");
   if (id_column >= 0) check_ids(table, static_cast<std::size_t>(id_column));
 }

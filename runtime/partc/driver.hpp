@@ -178,7 +178,8 @@ class RunnableModel {
   virtual void configure(const DriverOptions& options) = 0;
   virtual void init() = 0;
   virtual void load(const std::map<std::string, CsvTable>& tables) = 0;
-  // Per set, what its frames hold (every variable without `output SET: ...`).
+  // Per set, what its frames hold, when the model says (`output SET: ...`,
+  // facts().named_frames); else every variable of every set.
   virtual std::vector<FrameSpec> frames() const = 0;
   virtual void run_stage(const std::string& name) = 0;
   virtual void step(bool observed) = 0;
@@ -190,8 +191,9 @@ class RunnableModel {
   virtual std::int64_t log_every() const = 0;
   virtual std::vector<double> log_row() const = 0;
   virtual void check_finite() const = 0;
-  // Views of every set, in declaration order (stale after the next step).
-  virtual std::vector<SetView> sets() const = 0;
+  // Points `views` at every set, in declaration order, reusing their
+  // storage (they are stale after the next step).
+  virtual void view_sets(std::vector<SetView>& views) const = 0;
   // The summary's lines on open faces, solves and fast sums, and the searches.
   virtual std::vector<std::string> reports() const = 0;
   virtual std::vector<SearchReport> search_report() const = 0;
@@ -212,7 +214,7 @@ class ModelAdapter final : public RunnableModel {
     if constexpr (logs_observables<Model>::value) {
       facts.logs = true;
       facts.log_columns = Model::log_columns();
-      facts.log_every = model_.log_every();
+      facts.log_every = log_every();
     }
     facts.solves = has_solves<Model>::value;
     facts.fast_sums = has_fast_sums<Model>::value;
@@ -233,11 +235,7 @@ class ModelAdapter final : public RunnableModel {
   void load(const std::map<std::string, CsvTable>& tables) override { model_.load(tables); }
   std::vector<FrameSpec> frames() const override {
     if constexpr (has_frames<Model>::value) return model_.frames();
-    std::vector<FrameSpec> every_variable;
-    model_.for_each_set([&](const char* name, const auto&) {
-      every_variable.push_back(FrameSpec{name, {}, 1});
-    });
-    return every_variable;
+    return {};
   }
   void run_stage([[maybe_unused]] const std::string& name) override {
     if constexpr (has_stages<Model>::value) model_.run_stage(name);
@@ -262,10 +260,13 @@ class ModelAdapter final : public RunnableModel {
     return {};
   }
   void check_finite() const override { model_.check_finite(); }
-  std::vector<SetView> sets() const override {
-    std::vector<SetView> views;
-    model_.for_each_set([&](const char* name, const auto& set) { views.push_back(view_of(name, set)); });
-    return views;
+  void view_sets(std::vector<SetView>& views) const override {
+    std::size_t k = 0;
+    model_.for_each_set([&](const char* name, const auto& set) {
+      if (k == views.size()) views.emplace_back();
+      view_into(views[k++], name, set);
+    });
+    views.resize(k);
   }
   std::vector<std::string> reports() const override {
     std::vector<std::string> lines;

@@ -4,7 +4,7 @@
 // particles just before the blow-up.
 //
 //   LastFinite kept;                       // holds nothing until the first take
-//   kept.take(model.sets(), step);         // after each check that passed
+//   kept.take(views_of_the_sets, step);    // after each check that passed
 //   kept.write([](set) { return path; })   // on a blow-up
 //
 // Surprises:

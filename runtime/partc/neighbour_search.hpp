@@ -36,7 +36,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -45,6 +44,7 @@
 #include "partc/brute_force.hpp"
 #include "partc/cell_grid.hpp"
 #include "partc/domain.hpp"
+#include "partc/function_ref.hpp"
 #include "partc/kd_tree.hpp"
 #include "partc/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
@@ -165,9 +165,9 @@ class NeighbourSearch {
   // and j are the set's indices, as for for_each_pair.
   //
   // Compiled once in the runtime library (searches.cpp), not with each
-  // model: f is called through std::function once a batch (tens of pairs).
+  // model: f is called through a FunctionRef once a batch (tens of pairs).
   void for_each_pair_batch(bool with_self,
-                           const std::function<void(simd::PairBatch<D>&)>& f) const;
+                           FunctionRef<void(simd::PairBatch<D>&)> f) const;
 
   // for_each_near's neighbours packed the same way, for sums that take each
   // pair both ways, or that obey Newton's third law where the pair walk runs
@@ -180,7 +180,7 @@ class NeighbourSearch {
   // is as independent of the thread count as a per-particle query's.
   // Compiled in searches.cpp, as for_each_pair_batch.
   void for_each_near_batch(bool with_self,
-                           const std::function<void(simd::PairBatch<D>&)>& f) const;
+                           FunctionRef<void(simd::PairBatch<D>&)> f) const;
 
   // Whether such sums should take for_each_pair over per-particle queries:
   // when its pairs run in parallel (cell list), and when the set is small
@@ -293,6 +293,14 @@ class NeighbourSearch {
     };
   }
 
+  // g(j, dx) appending the pair (i, j) to batch; (i, i) at dx 0, the pair of
+  // i with itself, only with_self (j == i elsewhere is another image).
+  static auto pusher(simd::PairBatch<D>& batch, std::size_t i, bool with_self) {
+    return [&batch, i, with_self](std::size_t j, const Vec<D>& dx) {
+      if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
+    };
+  }
+
   // Order::keep on a path that sorts (brute force never does): indices differ.
   bool sorted_apart() const { return keep_order_ && kind_ != Kind::brute_force; }
 
@@ -383,7 +391,7 @@ const std::vector<std::size_t>* NeighbourSearch<D>::adopt_order(
 
 template <int D>
 void NeighbourSearch<D>::for_each_pair_batch(
-    bool with_self, const std::function<void(simd::PairBatch<D>&)>& f) const {
+    bool with_self, FunctionRef<void(simd::PairBatch<D>&)> f) const {
   if (kind_ == Kind::cell_list) {
     if (batched_build_ != build_count_) {  // the coordinates, once per build
       batches_.build(cell_list_, size_);
@@ -398,10 +406,7 @@ void NeighbourSearch<D>::for_each_pair_batch(
   simd::PairBatch<D>& batch = serial_batch_;
   batch.clear();
   pairs_off_cells([&](std::size_t i, const auto& pairs) {
-    pairs([&](std::size_t j, const Vec<D>& dx) {
-      // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
-      if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
-    });
+    pairs(pusher(batch, i, with_self));
     batch.hand_over_if_full(f);
   });
   batch.hand_over_rest(f);
@@ -409,7 +414,7 @@ void NeighbourSearch<D>::for_each_pair_batch(
 
 template <int D>
 void NeighbourSearch<D>::for_each_near_batch(
-    bool with_self, const std::function<void(simd::PairBatch<D>&)>& f) const {
+    bool with_self, FunctionRef<void(simd::PairBatch<D>&)> f) const {
   // Blocks of consecutive particles, a few per thread (a loaded thread leaves
   // its share to the others); how many changes no result.
   const std::size_t blocks = std::clamp<std::size_t>(
@@ -421,10 +426,7 @@ void NeighbourSearch<D>::for_each_near_batch(
     batch.set_slab(b);
     batch.set_each_pair_once(false);
     for (std::size_t i = b * size_ / blocks, stop = (b + 1) * size_ / blocks; i < stop; ++i) {
-      for_each_near(i, [&](std::size_t j, const Vec<D>& dx) {
-        // (i, i) at dx 0 is the pair of i with itself; j == i elsewhere is another image.
-        if (with_self || j != i || dx != Vec<D>::zero()) batch.push(i, j, dx);
-      });
+      for_each_near(i, pusher(batch, i, with_self));
       batch.hand_over_if_full(f);
     }
     batch.hand_over_rest(f);

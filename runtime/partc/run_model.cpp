@@ -89,13 +89,14 @@ class RunPlan {
   std::int64_t clean_ = -1;  // the last step found finite
 };
 
-// Per set: particle count, then min/mean/max of each variable (of |v| for a vec).
+// Per set (sets: views of the final state): particle count, then
+// min/mean/max of each variable (of |v| for a vec).
 void print_summary(std::ostream& out, RunnableModel& model, const ModelFacts& facts,
-                   const DriverOptions& options, double seconds) {
+                   const DriverOptions& options, double seconds, const std::vector<SetView>& sets) {
   std::ostringstream text;
   text << facts.name << ": " << model.step_count() << " steps, seed " << options.seed << ", "
        << seconds << " s\n";
-  for (const SetView& set : model.sets()) {
+  for (const SetView& set : sets) {
     text << set.name << ": " << set.size << (set.size == 1 ? " particle, " : " particles, ")
          << set.bytes_per_particle << " bytes each\n";
     if (set.size == 0) continue;
@@ -178,13 +179,17 @@ void run_model(RunnableModel& model, const ModelFacts& facts, const DriverOption
   if (facts.logs)
     log.emplace(facts.log_columns, options.quiet ? nullptr : &out,
                 options.log_every.value_or(model.log_every()), options.log, options.log_file_every);
-  RunPlan plan(options, model.frames(), facts.named_frames, std::move(log));
+  std::vector<FrameSpec> frames = model.frames();
+  if (!facts.named_frames)
+    for (const std::string& set : facts.sets) frames.push_back(FrameSpec{set, {}, 1});
+  RunPlan plan(options, std::move(frames), facts.named_frames, std::move(log));
 
   // Step 0 (the state after init or load) is checked and written like any other.
   // A step that writes a VTK frame is checked too, so no frame holds a NaN.
   bool checked = false;
   std::chrono::duration<double> stepping{0};  // in step(), for --profile
   LastFinite kept;
+  std::vector<SetView> views;  // of the sets, refreshed before each use
   const auto check = [&](std::int64_t step) {
     try {
       model.check_finite();
@@ -192,16 +197,16 @@ void run_model(RunnableModel& model, const ModelFacts& facts, const DriverOption
       plan.rethrow_with_last_clean(e, step);
     }
     plan.found_finite(step);
-    kept.take(model.sets(), step);
+    model.view_sets(views);
+    kept.take(views, step);
   };
   try {
     for (std::int64_t k = 0; k <= options.steps; ++k) {
-      if (k > 0 && facts.profiles) {
-        const auto before = std::chrono::steady_clock::now();
+      if (k > 0) {  // the clock read only for --profile: a small model's step is a microsecond
+        const auto before = facts.profiles ? std::chrono::steady_clock::now()
+                                           : std::chrono::steady_clock::time_point();
         model.step(plan.observed(k));
-        stepping += std::chrono::steady_clock::now() - before;
-      } else if (k > 0) {
-        model.step(plan.observed(k));
+        if (facts.profiles) stepping += std::chrono::steady_clock::now() - before;
       }
       const std::int64_t step = model.step_count();
       checked = plan.check_due(step);
@@ -209,7 +214,8 @@ void run_model(RunnableModel& model, const ModelFacts& facts, const DriverOption
       if (facts.logs && plan.observed(k)) plan.log_row(step, model.log_row());
       if (plan.any_frame_due(step)) {
         const double time = model.time();
-        for (const SetView& set : model.sets())
+        model.view_sets(views);
+        for (const SetView& set : views)
           if (VtkSeries* series = plan.frame_due(set.name, step))
             series->write(set, step, time, plan.frame_variables(set.name));
       }
@@ -221,13 +227,14 @@ void run_model(RunnableModel& model, const ModelFacts& facts, const DriverOption
   }
   plan.close_log();
 
+  model.view_sets(views);
   if (!options.output.empty())
-    for (const SetView& set : model.sets())
+    for (const SetView& set : views)
       write_csv(facts.sets.size() > 1 ? path_for_set(options.output, set.name) : options.output,
                 set);
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   if (options.quiet) return;
-  print_summary(out, model, facts, options, elapsed.count());
+  print_summary(out, model, facts, options, elapsed.count(), views);
   // After the output and the summary: the calibration runs kernels again.
   if (facts.profiles) {
     model.report_profile(out, options.steps);

@@ -78,9 +78,16 @@ struct SetView {
   std::vector<ColumnView> columns;  // for_each_variable's order: "p" first
 };
 
+// Points `view` at `set`, reusing its storage (no allocation once it has
+// held as many columns): the driver refreshes its views after every step.
 template <class Set>
-SetView view_of(std::string name, const Set& set) {
-  SetView view{std::move(name), Set::dim, set.size(), Set::bytes_per_particle, set.ids().data(), {}};
+void view_into(SetView& view, const char* name, const Set& set) {
+  view.name = name;
+  view.dim = Set::dim;
+  view.size = set.size();
+  view.bytes_per_particle = Set::bytes_per_particle;
+  view.ids = set.ids().data();
+  view.columns.clear();
   set.for_each_variable([&](const char* variable, const auto& values) {
     using S = typename std::decay_t<decltype(values)>::value_type;
     using Traits = StorageTraits<S>;
@@ -89,6 +96,12 @@ SetView view_of(std::string name, const Set& set) {
     view.columns.push_back({variable, element_of<typename Traits::component_type>(),
                             Traits::components, Traits::is_vec, values.data()});
   });
+}
+
+template <class Set>
+SetView view_of(const char* name, const Set& set) {
+  SetView view;
+  view_into(view, name, set);
   return view;
 }
 
