@@ -15,6 +15,8 @@
 // does not have.
 #include "analysis/fast_sums.hpp"
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "ir/mutator.hpp"
@@ -165,6 +167,36 @@ class NormAsR : public ir::Mutator {
   }
 };
 
+// The variables an expression reads, in reading order.
+class VariablesRead : public ir::Visitor {
+ public:
+  std::vector<std::pair<int, int>> read;  // set, var
+  using ir::Visitor::visit;
+
+ protected:
+  void visit(const ir::VarRef& n) override { read.emplace_back(n.set, n.var); }
+};
+
+// "S.p, S.q": the positions of both sets, then the charge's variables, that
+// the schedule stores as float; each once.
+std::string float_inputs(const ir::Model& model, const FastSumFact& fact) {
+  std::vector<std::pair<int, int>> inputs{{fact.sources, ir::kPosition},
+                                          {fact.targets, ir::kPosition}};
+  VariablesRead charge;
+  charge.visit(fact.charge);
+  inputs.insert(inputs.end(), charge.read.begin(), charge.read.end());
+  std::vector<std::pair<int, int>> seen;
+  std::string out;
+  for (const auto& [set, var] : inputs) {
+    const ir::Variable& v = model.sets[set].vars[var];
+    if (v.storage != ir::Precision::Float ||
+        std::find(seen.begin(), seen.end(), std::pair{set, var}) != seen.end())
+      continue;
+    seen.emplace_back(set, var);
+    out += (out.empty() ? "" : ", ") + model.sets[set].name + "." + v.name;
+  }
+  return out;
+}
 
 // Factors the dense sum `acc` of `st`, whose term is `term` (its body; in a
 // solve, its coefficient with w[j] taken as 1, which may be null for 1),
@@ -224,6 +256,7 @@ void factor_sum(const ir::Model& model, const ir::Statement& st, const ir::Accum
   if (!fact.in_solve) fact.tolerance = st.schedule.tolerance;
   fact.order = st.schedule.order;
   fact.line = st.line;
+  fact.float_inputs = float_inputs(model, fact);
   auto text = [&](const Expr& e) {
     return std::string(source.substr(e->loc.begin, e->loc.end - e->loc.begin));
   };
@@ -240,7 +273,12 @@ void factor_sum(const ir::Model& model, const ir::Statement& st, const ir::Accum
        : fact.field  ? "a field, k(|dx|) * dx * q[j]"
                      : "a potential, k(|dx|) * q[j]") +
       " with k(r) = " + ir::to_string(NormAsR().mutate(fact.kernel), model, st.labels) +
-      (fact.skips_coincident ? " (0 at r = 0)" : "") + " and q[j] = " + charge;
+      (fact.skips_coincident ? " (0 at r = 0)" : "") + " and q[j] = " + charge +
+      (fact.float_inputs.empty() || fact.order
+           ? ""
+           : "; it reads " + fact.float_inputs +
+                 " stored as float, so a tol below 1e-7 is met for the rounded values only "
+                 "(the run warns)");
   report[acc.id] = std::move(fact);
 }
 

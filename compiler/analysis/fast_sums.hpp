@@ -22,7 +22,10 @@ struct FastSumFact {
   int sources = 0, targets = 0;   // sets
   ir::Expr tolerance;             // requested relative L2 error; null with an order or in a solve
   ir::Expr order;                 // Chebyshev nodes per axis; null: from the tolerance
-  int line = 0;                   // of the sum, for reports
+  // The float-stored variables it reads (the sets' p, the charge's), "S.p, S.q":
+  // a tolerance finer than their rounding is met for the rounded values only.
+  std::string float_inputs;
+  int line = 0;  // of the sum, for reports
   std::string reason;             // for --explain
 };
 

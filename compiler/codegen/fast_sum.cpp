@@ -7,6 +7,8 @@
 // checked against the direct sum on a sample of targets when the run asks.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "codegen/model_emitter.hpp"
 
 namespace partc::codegen {
@@ -62,9 +64,12 @@ void ModelEmitter::fast_sum_report() {
   line("// Each fast sum: the order its tolerance chose, its predicted and measured error.");
   line("std::vector<std::string> fast_sum_report() const {");
   line("std::vector<std::string> report;");
-  line(
-      "for (const auto& record : fast_sums_) if (record.evaluations() > 0) "
-      "report.push_back(record.summary());");
+  const bool warns = std::any_of(facts_.fast_sums.begin(), facts_.fast_sums.end(),
+                                 [](const auto& sum) { return !sum.second.float_inputs.empty(); });
+  line("for (const auto& record : fast_sums_) {");
+  line("if (record.evaluations() > 0) report.push_back(record.summary());");
+  if (warns) line("if (!record.warning().empty()) report.push_back(\"warning: \" + record.warning());");
+  line("}");
   line("return report;");
   line("}");
   line("// From now on, every fast sum is checked against the direct sum on a sample of");

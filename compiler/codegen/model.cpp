@@ -926,13 +926,18 @@ void ModelEmitter::state() {
   if (!solve_results_.empty()) line("std::string matrix_market_;  // \"\": no Matrix Market files");
   if (!fast_sum_records_.empty()) {
     std::vector<std::string> records(fast_sum_records_.size());
-    for (const auto& [id, index] : fast_sum_records_)
-      records[index] = fmt::format(
-          "partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"{}}}", options_.source_name,
-          facts_.fast_sums.at(id).line,
-          facts_.fast_sums.at(id).in_solve
-              ? ", partc::fast_sum::FastSumRecord::Role::solve_products"
-              : "");
+    for (const auto& [id, index] : fast_sum_records_) {
+      const FastSumFact& fact = facts_.fast_sums.at(id);
+      const std::string role = fact.in_solve ? "solve_products" : "sum";
+      records[index] =
+          fact.float_inputs.empty() && !fact.in_solve
+              ? fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"}}",
+                            options_.source_name, fact.line)
+              : fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\", "
+                            "partc::fast_sum::FastSumRecord::Role::{}{}}}",
+                            options_.source_name, fact.line, role,
+                            fact.float_inputs.empty() ? "" : ", \"" + fact.float_inputs + "\"");
+    }
     linef("std::vector<partc::fast_sum::FastSumRecord> fast_sums_{{{}}};", fmt::join(records, ", "));
     line("bool check_accuracy_ = false;  // --check-accuracy");
   }

@@ -2,7 +2,8 @@
 // a measured error above the tolerance stops the run naming the sum, what was
 // asked and measured and what order would meet it; a tolerance no order
 // meets stops it at once; an order fixed by the schedule is reported, never
-// refused; the summary says what was predicted and measured.
+// refused; the summary says what was predicted and measured; a tolerance
+// finer than float-stored inputs resolve is warned of.
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -83,4 +84,22 @@ TEST_CASE("fast sum contract: an order the schedule fixes is reported, never ref
   CHECK_NOTHROW(record.check(fmm, Coulomb{}, x, x, q, phi));
   CHECK_THAT(record.summary(), Contains("fmm order 2 (schedule)"));
   CHECK(record.worst_measured_l2() > 0.4);
+}
+
+TEST_CASE("fast sum contract: a tolerance finer than float-stored inputs is warned of",
+          "[fast_sum][contract]") {
+  const auto x = cloud(6000);
+  auto warning = [&](const Accuracy& asked, std::string float_inputs) {
+    const Fmm fmm(x, x, Coulomb{}, asked);
+    FastSumRecord record{"sum at model.part:5", FastSumRecord::Role::sum, std::move(float_inputs)};
+    record.evaluated(asked, fmm, std::chrono::steady_clock::now());
+    record.evaluated(asked, fmm, std::chrono::steady_clock::now());
+    return record.warning();
+  };
+  CHECK_THAT(warning({1e-9, 0, false}, "S.p, S.q"),
+             Matches("sum at model\\.part:5: tol 1e-09 is finer than its float-stored inputs "
+                     "\\(S\\.p, S\\.q\\) resolve, about 1e-7 relative: .*precision = double.*"));
+  CHECK(warning({1e-6, 0, false}, "S.p").empty());  // float resolves it
+  CHECK(warning({1e-9, 0, false}, "").empty());     // inputs in double
+  CHECK(warning({0, 9, false}, "S.p").empty());     // an order asks no tolerance
 }

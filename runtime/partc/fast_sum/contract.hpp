@@ -4,6 +4,7 @@
 //   record.evaluated(accuracy, fmm, started);        // after each evaluation
 //   if (check) record.check(fmm, kernel, sources, targets, charges, result);
 //   record.summary();  // "sum at model.part:17: fmm order 7 for tol 1e-06, ..."
+//   record.warning();  // "" unless the tolerance is finer than float inputs carry
 //
 // A generated model keeps one record per sum its schedule runs fast
 // (`dense = fmm`): what was asked (a tolerance, or an order), the order the
@@ -20,6 +21,13 @@
 // the run; nor does the check of a matrix-free solve's products, whose
 // tolerance partc chose, not the user: the solve's residual against the
 // direct sums is that contract (solve/direct_residual.hpp).
+//
+// Inputs stored as float (positions or charges; schedule: precision = float)
+// are rounded to about 6e-8 relative, which moves a sum by about as much: a
+// tolerance below float_inputs_tol is met for the rounded inputs (the direct
+// sum the check compares with reads them too), not for the double values
+// they were rounded from. The record warns of it once, as a line of the
+// summary, rather than refusing: the fast sum still does what was asked.
 #pragma once
 
 #include <algorithm>
@@ -37,11 +45,15 @@
 
 namespace partc::fast_sum {
 
+// Below this a tolerance asks more than float-stored inputs resolve.
+constexpr double float_inputs_tol = 1e-7;
+
 class FastSumRecord {
  public:
   enum class Role { sum, solve_products };
-  explicit FastSumRecord(std::string where, Role role = Role::sum)
-      : where_(std::move(where)), role_(role) {}
+  // float_inputs: the float-stored variables the sum reads ("V.p, V.q"), if any.
+  explicit FastSumRecord(std::string where, Role role = Role::sum, std::string float_inputs = {})
+      : where_(std::move(where)), role_(role), float_inputs_(std::move(float_inputs)) {}
 
   // After an evaluation planned at `started` (plan and evaluation timed
   // together). Throws NumericalError when even the highest order the plan
@@ -54,6 +66,13 @@ class FastSumRecord {
     predicted_ = fmm.predicted_error();
     ++evaluations_;
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (!float_inputs_.empty() && asked.order == 0 && asked.tol < float_inputs_tol &&
+        warning_.empty())
+      warning_ = where_ + ": tol " + number(asked.tol) + " is finer than its float-stored inputs (" +
+                 float_inputs_ +
+                 ") resolve, about 1e-7 relative: it is met for the rounded inputs, not for the "
+                 "values they were rounded from; store them as double (schedule: precision = "
+                 "double) for a tighter sum";
     if (asked.order == 0 && predicted_ > asked.tol)
       throw NumericalError(where_ + ": no order meets tol " + number(asked.tol) +
                            ": the highest, " + std::to_string(order_) + ", is predicted to give " +
@@ -89,6 +108,7 @@ class FastSumRecord {
   }
 
   std::int64_t evaluations() const { return evaluations_; }
+  const std::string& warning() const { return warning_; }  // "" when all is well
   double worst_measured_l2() const { return worst_l2_; }  // -1: never checked
 
   std::string summary() const {
@@ -111,6 +131,8 @@ class FastSumRecord {
   }
   std::string where_;
   Role role_;
+  std::string float_inputs_;
+  std::string warning_;
   Accuracy asked_;
   int order_ = 0;
   double predicted_ = 0;
