@@ -13,7 +13,7 @@
 // (no condition, a bound under `or`, r[i] * r[j]) is dense: every particle j
 // is visited. The search structure that serves a
 // neighbourhood sum is chosen at run time (brute force for few particles,
-// a cell list otherwise) by runtime/partc/neighbour_search.hpp.
+// a cell list otherwise) by runtime/partc/search/neighbour_search.hpp.
 #include "analysis/neighbourhood.hpp"
 
 #include <set>

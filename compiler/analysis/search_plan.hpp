@@ -57,7 +57,7 @@ struct SearchPlan {
 // shared/separate at R / r = 1, 1.25: 2D 4.4/4.9 ms, 7.0/5.1 ms; 3D 8.5/10.9
 // ms, 18.7/12.5 ms, so the break-even growth lies near 1.1 (2D) and 1.3 (3D).
 // Radii whose ratio is known only at run time (two params) meet the same test
-// there (partc::search_to_walk, runtime/partc/search_sharing.hpp).
+// there (partc::search_to_walk, runtime/partc/search/search_sharing.hpp).
 inline constexpr double share_candidate_growth = 1.2;
 
 SearchPlan plan_searches(const ir::Model& model, const NeighbourhoodReport& neighbourhoods,

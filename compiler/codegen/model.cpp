@@ -258,17 +258,17 @@ void ModelEmitter::header() {
   for (const std::string& h : std_headers) linef("#include <{}>", h);
   line("");
   std::vector<std::string> headers = {
-      "csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
+      "io/csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
       "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp",    "vec.hpp"};
-  if (!searches_.empty()) headers.push_back("neighbour_search.hpp");
+  if (!searches_.empty()) headers.push_back("search/neighbour_search.hpp");
   if (std::any_of(facts_.searches.groups.begin(), facts_.searches.groups.end(),
                   [](const SearchGroup& g) { return !g.chosen_at_run_time.empty(); }))
-    headers.push_back("search_sharing.hpp");
+    headers.push_back("search/search_sharing.hpp");
   if (Domain::any(m_.domain.reflect) || Domain::any(m_.domain.open)) headers.push_back("faces.hpp");
-  if (!lists_.empty()) headers.push_back("verlet_list.hpp");
+  if (!lists_.empty()) headers.push_back("search/verlet_list.hpp");
   if (options_.driver_main) headers.push_back("driver.hpp");
   if (options_.profile) headers.push_back("profile.hpp");
-  if (!m_.frames.empty()) headers.push_back("vtk.hpp");
+  if (!m_.frames.empty()) headers.push_back("io/vtk.hpp");
   // Each solve's own solver (Eigen's dense LU, its sparse Krylov methods and
   // the matrix-free GMRES take seconds each to compile), and Matrix Market
   // output for --matrix-market.

@@ -21,7 +21,7 @@
 #include "driver/pipeline.hpp"
 #include "grammar/parser.hpp"
 #include "ir/printer.hpp"
-#include "partc/output_file.hpp"
+#include "partc/io/output_file.hpp"
 #include "support/diagnostics.hpp"
 
 namespace {
@@ -141,7 +141,7 @@ Options parse_options(int argc, char** argv) {
 }
 
 // Writes the whole text or nothing (a regular file through a temporary; a
-// link, pipe or device in place: runtime/partc/output_file.hpp).
+// link, pipe or device in place: runtime/partc/io/output_file.hpp).
 void write_output(const std::optional<std::string>& path, const std::string& text) {
   if (!path || *path == "-") {
     std::cout << text;

@@ -61,11 +61,11 @@
 #include <utility>
 #include <vector>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/errors.hpp"
 #include "partc/io/set_view.hpp"
 #include "partc/model_support.hpp"  // ParamInfo, SearchReport: a model used as a library needs them too
-#include "partc/vtk.hpp"            // FrameSpec
+#include "partc/io/vtk.hpp"            // FrameSpec
 
 namespace partc {
 

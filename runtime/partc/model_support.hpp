@@ -21,7 +21,7 @@
 #include <string>
 #include <system_error>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/domain.hpp"
 #include "partc/errors.hpp"
 #include "partc/faces.hpp"

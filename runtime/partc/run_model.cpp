@@ -10,8 +10,8 @@
 
 #include "partc/driver.hpp"
 #include "partc/finite.hpp"
-#include "partc/last_finite.hpp"
-#include "partc/thermo_log.hpp"
+#include "partc/io/last_finite.hpp"
+#include "partc/io/thermo_log.hpp"
 
 namespace partc {
 

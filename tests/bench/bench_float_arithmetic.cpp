@@ -34,7 +34,7 @@
 #include "md_velocity.hpp"
 #include "md_velocity_float.hpp"
 #include "partc/domain.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
 #include "seed_model.hpp"

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
 #include "seed_points.hpp"

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/vec.hpp"
 
 namespace bench {

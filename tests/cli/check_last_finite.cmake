@@ -1,5 +1,5 @@
 # After a numerical blow-up the driver writes the last state found finite
-# (runtime/partc/last_finite.hpp): beside --output by default, or to
+# (runtime/partc/io/last_finite.hpp): beside --output by default, or to
 # --last-finite; never to --output itself. The file reads back with --input
 # and holds the particles of the step the message names.
 # Usage: cmake -DBLOWUP=... -DSPH=... -DDIR=... -P check_last_finite.cmake

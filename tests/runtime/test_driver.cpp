@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/driver.hpp"
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"

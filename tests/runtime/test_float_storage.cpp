@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/domain.hpp"
 #include "partc/errors.hpp"
 #include "partc/faces.hpp"
 #include "partc/finite.hpp"
-#include "partc/neighbour_search.hpp"
+#include "partc/search/neighbour_search.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/vec.hpp"
-#include "partc/verlet_list.hpp"
-#include "partc/vtk.hpp"
+#include "partc/search/verlet_list.hpp"
+#include "partc/io/vtk.hpp"
 
 namespace fs = std::filesystem;
 using partc::Vec;

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "search_cases.hpp"
-#include "partc/kd_tree.hpp"
+#include "partc/search/kd_tree.hpp"
 
 using partc::Domain;
 using partc::KdTree;

@@ -18,13 +18,13 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/neighbour_search.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/neighbour_search.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/simd/compress.hpp"
 #include "partc/simd/pair_batches.hpp"
-#include "partc/verlet_list.hpp"
+#include "partc/search/verlet_list.hpp"
 
 using partc::Domain;
 using partc::Vec;

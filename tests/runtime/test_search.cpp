@@ -20,12 +20,12 @@
 #include <vector>
 
 #include "search_cases.hpp"
-#include "partc/brute_force.hpp"
-#include "partc/linked_cell_list.hpp"
-#include "partc/neighbour_search.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/brute_force.hpp"
+#include "partc/search/linked_cell_list.hpp"
+#include "partc/search/neighbour_search.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/particle_set.hpp"
-#include "partc/slab_schedule.hpp"
+#include "partc/search/slab_schedule.hpp"
 
 using partc::Domain;
 using partc::Vec;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "partc/csv.hpp"
-#include "partc/thermo_log.hpp"
+#include "partc/io/csv.hpp"
+#include "partc/io/thermo_log.hpp"
 
 namespace {
 

@@ -20,7 +20,7 @@
 #include "partc/parallel.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/vec.hpp"
-#include "partc/verlet_list.hpp"
+#include "partc/search/verlet_list.hpp"
 
 using partc::Domain;
 using partc::Vec;

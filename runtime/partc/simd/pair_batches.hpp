@@ -41,7 +41,7 @@
 #include <tuple>
 #include <vector>
 
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/compress.hpp"
 #include "partc/simd/float_lanes.hpp"  // for the batches' readers: generated vector terms

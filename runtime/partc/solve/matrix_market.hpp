@@ -29,7 +29,7 @@
 #include <ostream>
 #include <string>
 
-#include "partc/output_file.hpp"
+#include "partc/io/output_file.hpp"
 
 namespace partc {
 

@@ -1,4 +1,4 @@
-// partc/linked_cell_list.hpp: LinkedCellList<D>, a cell list as head/next linked
+// partc/search/linked_cell_list.hpp: LinkedCellList<D>, a cell list as head/next linked
 // lists (the classic serial-insert form). Points keep their indices: no
 // reordering, so j in f(j, dx) indexes the caller's arrays directly.
 //
@@ -16,7 +16,7 @@
 #include <limits>
 #include <vector>
 
-#include "partc/cell_grid.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/vec.hpp"
 

@@ -1,4 +1,4 @@
-// partc/search_instances.hpp: the search structures' code that does not
+// partc/search/search_instances.hpp: the search structures' code that does not
 // depend on a model, compiled once in the runtime library (searches.cpp)
 // for every dimension a model can have (1 to 4, x y z w).
 //

@@ -1,4 +1,4 @@
-// partc/neighbour_search.hpp: NeighbourSearch<D>, the facade generated code uses.
+// partc/search/neighbour_search.hpp: NeighbourSearch<D>, the facade generated code uses.
 // build picks, from the data, brute force when a cell list would save a query
 // too few pair tests to pay for itself (small sets, cutoffs near the box size,
 // or a periodic dimension with < 3 cells), a k-d tree when the points are so
@@ -41,15 +41,15 @@
 #include <string>
 #include <vector>
 
-#include "partc/brute_force.hpp"
-#include "partc/cell_grid.hpp"
+#include "partc/search/brute_force.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/function_ref.hpp"
-#include "partc/kd_tree.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/kd_tree.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
-#include "partc/slab_schedule.hpp"
+#include "partc/search/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

@@ -1,10 +1,10 @@
-// partc/searches.cpp: the search structures for D = 1..4, compiled once
+// partc/search/searches.cpp: the search structures for D = 1..4, compiled once
 // (search_instances.hpp says what that covers), and NeighbourSearch's
 // builds and packed pair walks (neighbour_search.hpp).
-#include "partc/brute_force.hpp"
-#include "partc/kd_tree.hpp"
-#include "partc/neighbour_search.hpp"
-#include "partc/ordered_cell_list.hpp"
+#include "partc/search/brute_force.hpp"
+#include "partc/search/kd_tree.hpp"
+#include "partc/search/neighbour_search.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 
 namespace partc {
 

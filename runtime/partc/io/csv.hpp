@@ -1,4 +1,4 @@
-// partc/csv.hpp: particle sets to and from CSV files, one row per particle.
+// partc/io/csv.hpp: particle sets to and from CSV files, one row per particle.
 //
 //   read_csv(path)          -> CsvTable: a header of names and rows of doubles
 //   load_set(table, set[, initialise])  fills a ParticleSet from a CsvTable
@@ -48,7 +48,7 @@
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
 #include "partc/io/set_view.hpp"
-#include "partc/output_file.hpp"
+#include "partc/io/output_file.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

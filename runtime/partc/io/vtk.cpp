@@ -1,5 +1,5 @@
-// partc/vtk.cpp: VTK output of a SetView, compiled once for every set type.
-#include "partc/vtk.hpp"
+// partc/io/vtk.cpp: VTK output of a SetView, compiled once for every set type.
+#include "partc/io/vtk.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <ostream>
 
-#include "partc/csv.hpp"  // detail::id_order, append_number
-#include "partc/output_file.hpp"
+#include "partc/io/csv.hpp"  // detail::id_order, append_number
+#include "partc/io/output_file.hpp"
 
 namespace partc {
 

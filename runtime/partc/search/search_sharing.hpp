@@ -1,4 +1,4 @@
-// partc/search_sharing.hpp: which search a group of neighbourhood sums walks
+// partc/search/search_sharing.hpp: which search a group of neighbourhood sums walks
 // when the ratio of its radius to the other groups' is known only at run
 // time (two params, rc and rf). The compiler decides this itself when the
 // ratio is known (compiler/analysis/search_plan.cpp); this is the same rule,

@@ -1,5 +1,5 @@
-// partc/output_file.cpp: write_file_atomically (output_file.hpp says how it behaves).
-#include "partc/output_file.hpp"
+// partc/io/output_file.cpp: write_file_atomically (output_file.hpp says how it behaves).
+#include "partc/io/output_file.hpp"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
-// partc/thermo_log.cpp: ThermoLog (thermo_log.hpp says what it shows and writes).
-#include "partc/thermo_log.hpp"
+// partc/io/thermo_log.cpp: ThermoLog (thermo_log.hpp says what it shows and writes).
+#include "partc/io/thermo_log.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "partc/csv.hpp"  // detail::append_number
+#include "partc/io/csv.hpp"  // detail::append_number
 
 namespace partc {
 

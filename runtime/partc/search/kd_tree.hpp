@@ -1,4 +1,4 @@
-// partc/kd_tree.hpp: KdTree<D>, a k-d tree for clustered or very non-uniform
+// partc/search/kd_tree.hpp: KdTree<D>, a k-d tree for clustered or very non-uniform
 // particle sets, where a cell list degrades (a few cells hold most points and
 // every query scans them). A query costs about log N plus its neighbours
 // whatever the distribution; build is O(N log N). Measured (2D, ~20 neighbours
@@ -59,7 +59,7 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/search_instances.hpp"
+#include "partc/search/search_instances.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

@@ -1,4 +1,4 @@
-// partc/ordered_cell_list.hpp: OrderedCellList<D>, a cell list whose points are
+// partc/search/ordered_cell_list.hpp: OrderedCellList<D>, a cell list whose points are
 // sorted by cell (stable counting sort), so a cell - and a run of cells along
 // the last dimension - is one contiguous range of points: the query's inner
 // loop is a linear scan.
@@ -32,11 +32,11 @@
 #include <utility>
 #include <vector>
 
-#include "partc/cell_grid.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/parallel.hpp"
-#include "partc/search_instances.hpp"
-#include "partc/slab_schedule.hpp"
+#include "partc/search/search_instances.hpp"
+#include "partc/search/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

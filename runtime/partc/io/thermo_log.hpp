@@ -1,4 +1,4 @@
-// partc/thermo_log.hpp: the time series of a model's logged observables, as
+// partc/io/thermo_log.hpp: the time series of a model's logged observables, as
 // LAMMPS's thermo output shows them: a header and a row every few steps on
 // the terminal, and every row in a CSV file that plotting tools load.
 //

@@ -1,4 +1,4 @@
-// partc/slab_schedule.hpp: SlabSchedule, the deterministic parallel order in
+// partc/search/slab_schedule.hpp: SlabSchedule, the deterministic parallel order in
 // which a structure walks each pair of points once (Newton's third law: a pair
 // term given to both points, one of them += term, the other +-= term).
 //

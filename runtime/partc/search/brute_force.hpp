@@ -1,4 +1,4 @@
-// partc/brute_force.hpp: BruteForce<D>, the O(N)-per-query neighbour search.
+// partc/search/brute_force.hpp: BruteForce<D>, the O(N)-per-query neighbour search.
 // Fastest for small N (see NeighbourSearch::default_margin) and the
 // only structure without restrictions: any radius, any periodic box.
 //
@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/search_instances.hpp"
+#include "partc/search/search_instances.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

@@ -1,9 +1,9 @@
-// partc/csv_write.cpp: a set written as CSV, through its SetView, compiled
+// partc/io/csv_write.cpp: a set written as CSV, through its SetView, compiled
 // once for every model's set types (csv.hpp says what the file holds).
 #include <algorithm>
 #include <numeric>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 
 namespace partc {
 

@@ -1,4 +1,4 @@
-// partc/vtk.hpp: ParaView-readable output of particle sets.
+// partc/io/vtk.hpp: ParaView-readable output of particle sets.
 //
 //   write_vtu(path, set)     one UnstructuredGrid (.vtu) of VTK_VERTEX cells
 //   VtkSeries series(prefix) PREFIX_000042.vtu per written step, plus

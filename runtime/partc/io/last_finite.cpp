@@ -1,9 +1,9 @@
-// partc/last_finite.cpp: the copy of the last finite state (last_finite.hpp).
-#include "partc/last_finite.hpp"
+// partc/io/last_finite.cpp: the copy of the last finite state (last_finite.hpp).
+#include "partc/io/last_finite.hpp"
 
 #include <cstring>
 
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 
 namespace partc {
 

@@ -1,4 +1,4 @@
-// partc/last_finite.hpp: a copy of the last model state found finite, kept
+// partc/io/last_finite.hpp: a copy of the last model state found finite, kept
 // so that a numerical blow-up loses no work. The driver writes it as CSV,
 // which --input reads back: resume with a smaller time step, or look at the
 // particles just before the blow-up.

@@ -1,4 +1,4 @@
-// partc/output_file.hpp: the one way the runtime's writers (csv.hpp, vtk.hpp,
+// partc/io/output_file.hpp: the one way the runtime's writers (csv.hpp, vtk.hpp,
 // solve/matrix_market.hpp) put a file on disk.
 //
 //   detail::write_file_atomically(path, [&](std::ostream& out) { out << ...; });

@@ -1,4 +1,4 @@
-// partc/cell_grid.hpp: CellGrid<D>, the geometry shared by LinkedCellList and
+// partc/search/cell_grid.hpp: CellGrid<D>, the geometry shared by LinkedCellList and
 // OrderedCellList: cell sizes, the cell of a point, and the walk over the cells
 // near a query point with per-cell periodic shifts, and scan, the pair loop.
 // It stores no points; each cell list supplies how to walk the points of a run

@@ -1,6 +1,6 @@
-// partc/csv.cpp: reading CSV files, and the messages that point into them
+// partc/io/csv.cpp: reading CSV files, and the messages that point into them
 // (csv.hpp says what is accepted and what each complaint looks like).
-#include "partc/csv.hpp"
+#include "partc/io/csv.hpp"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,4 +1,4 @@
-// partc/verlet_list.hpp: VerletList<D>, neighbour lists reused across steps
+// partc/search/verlet_list.hpp: VerletList<D>, neighbour lists reused across steps
 // (molecular dynamics with a skin). update builds, for every particle, the list
 // of particles within radius + skin (with NeighbourSearch), and rebuilds only
 // when that list could have become incomplete; for_each_near filters the list
@@ -88,10 +88,10 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/neighbour_search.hpp"
+#include "partc/search/neighbour_search.hpp"
 #include "partc/parallel.hpp"
 #include "partc/simd/pair_batches.hpp"
-#include "partc/slab_schedule.hpp"
+#include "partc/search/slab_schedule.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {
