@@ -41,8 +41,8 @@
 #include <tuple>
 #include <vector>
 
-#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/simd/compress.hpp"
 #include "partc/simd/float_lanes.hpp"  // for the batches' readers: generated vector terms
 #include "partc/simd/highway.hpp"
@@ -140,36 +140,20 @@ class PairBatch {
   template <class Load>
   HWY_INLINE void append_near(std::size_t i, std::size_t first, std::size_t stop,
                               double squared_reach, Load&& load) {
-    reserve(stop - first);
-    const Real d;
-    const Index du;
-    const std::size_t n = lanes();
-    const auto reach = hn::Set(d, squared_reach);
-    const auto i_lanes = hn::Set(du, static_cast<std::uint64_t>(i));
-    // Locals, not members: a store through a double* could alias them, and
-    // reloading them after every store costs as much as the filter.
-    std::size_t count = count_;
-    std::uint64_t* i_out = i_.data();
-    std::uint64_t* j_out = j_.data();
-    std::array<double*, D> dx_out;
-    for (int k = 0; k < D; ++k) dx_out[k] = dx_[k].data();
-    double* r2_out = r2_.data();
-    for (std::size_t j = first; j < stop; j += n) {
-      std::array<hn::Vec<Real>, D> dx;
-      const hn::Vec<Index> j_lanes = load(j, dx);
-      // Summed in dimension order, as squared_norm does: the same hits as the scalar scan.
-      auto r2 = hn::Mul(dx[0], dx[0]);
-      for (int k = 1; k < D; ++k) r2 = hn::Add(r2, hn::Mul(dx[k], dx[k]));
-      auto hit = hn::Le(r2, reach);
-      if (j + n > stop) hit = hn::And(hit, hn::FirstN(d, stop - j));
-      const Compressor compress(hit);
-      hn::StoreU(i_lanes, du, i_out + count);  // every lane i: no compress needed
-      hn::StoreU(compress(j_lanes), du, j_out + count);
-      for (int k = 0; k < D; ++k) hn::StoreU(compress(dx[k]), d, dx_out[k] + count);
-      hn::StoreU(compress(r2), d, r2_out + count);
-      count += compress.count();
-    }
-    count_ = count;
+    const auto i_lanes = hn::Set(Index(), static_cast<std::uint64_t>(i));
+    append_hits<true>(first, stop, squared_reach,
+                      [&](std::size_t k, std::array<hn::Vec<Real>, D>& dx, hn::Vec<Index>& i_of) {
+                        i_of = i_lanes;
+                        return load(k, dx);
+                      });
+  }
+
+  // As append_near, for candidate pairs of several points: load(k, dx, i)
+  // also sets the i of each lane.
+  template <class Load>
+  HWY_INLINE void append_pairs(std::size_t first, std::size_t stop, double squared_reach,
+                               Load&& load) {
+    append_hits<false>(first, stop, squared_reach, load);
   }
 
   // f(*this), then clear(), once the batch holds batch_vectors vectors of
@@ -203,6 +187,43 @@ class PairBatch {
  private:
   template <class T>
   using Columns = std::vector<std::vector<T>>;
+
+  // The filter of append_near and append_pairs; one_i: every lane has the
+  // same i, stored without a compress.
+  template <bool one_i, class Load>
+  HWY_INLINE void append_hits(std::size_t first, std::size_t stop, double squared_reach,
+                              Load&& load) {
+    reserve(stop - first);
+    const Real d;
+    const Index du;
+    const std::size_t n = lanes();
+    const auto reach = hn::Set(d, squared_reach);
+    // Locals, not members: a store through a double* could alias them, and
+    // reloading them after every store costs as much as the filter.
+    std::size_t count = count_;
+    std::uint64_t* i_out = i_.data();
+    std::uint64_t* j_out = j_.data();
+    std::array<double*, D> dx_out;
+    for (int k = 0; k < D; ++k) dx_out[k] = dx_[k].data();
+    double* r2_out = r2_.data();
+    for (std::size_t j = first; j < stop; j += n) {
+      std::array<hn::Vec<Real>, D> dx;
+      hn::Vec<Index> i_lanes;
+      const hn::Vec<Index> j_lanes = load(j, dx, i_lanes);
+      // Summed in dimension order, as squared_norm does: the same hits as the scalar scan.
+      auto r2 = hn::Mul(dx[0], dx[0]);
+      for (int k = 1; k < D; ++k) r2 = hn::Add(r2, hn::Mul(dx[k], dx[k]));
+      auto hit = hn::Le(r2, reach);
+      if (j + n > stop) hit = hn::And(hit, hn::FirstN(d, stop - j));
+      const Compressor compress(hit);
+      hn::StoreU(one_i ? i_lanes : compress(i_lanes), du, i_out + count);
+      hn::StoreU(compress(j_lanes), du, j_out + count);
+      for (int k = 0; k < D; ++k) hn::StoreU(compress(dx[k]), d, dx_out[k] + count);
+      hn::StoreU(compress(r2), d, r2_out + count);
+      count += compress.count();
+    }
+    count_ = count;
+  }
   // Entries of padding after count(): a vector of floats (reserve keeps
   // 2 * lanes() spare, which holds it).
   static std::size_t padding() { return hn::Lanes(Float()); }
