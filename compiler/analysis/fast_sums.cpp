@@ -308,8 +308,9 @@ FastSumReport find_fast_sums(const ir::Model& model, const NeighbourhoodReport& 
              operators.at({static_cast<int>(g), static_cast<int>(k)}).terms) {
           if (!t.sum) continue;
           if (neighbourhoods.at(t.sum->id).kind != SearchFact::Kind::Dense) {
-            errors.push_back({t.sum->loc, "a matrix-free solve sums over all pairs, and this "
-                                          "sum has a cutoff",
+            errors.push_back({t.sum->loc,
+                              "a matrix-free solve sums over all pairs, and this "
+                              "sum has a cutoff",
                               "its products are fast sums over all pairs; drop dense = fmm to "
                               "assemble the matrix"});
             continue;

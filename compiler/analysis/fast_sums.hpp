@@ -25,8 +25,8 @@ struct FastSumFact {
   // The float-stored variables it reads (the sets' p, the charge's), "S.p, S.q":
   // a tolerance finer than their rounding is met for the rounded values only.
   std::string float_inputs;
-  int line = 0;  // of the sum, for reports
-  std::string reason;             // for --explain
+  int line = 0;        // of the sum, for reports
+  std::string reason;  // for --explain
 };
 
 // Keyed by Accumulate::id; only sums that run fast are in it.

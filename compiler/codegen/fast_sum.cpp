@@ -68,7 +68,8 @@ void ModelEmitter::fast_sum_report() {
                                  [](const auto& sum) { return !sum.second.float_inputs.empty(); });
   line("for (const auto& record : fast_sums_) {");
   line("if (record.evaluations() > 0) report.push_back(record.summary());");
-  if (warns) line("if (!record.warning().empty()) report.push_back(\"warning: \" + record.warning());");
+  if (warns)
+    line("if (!record.warning().empty()) report.push_back(\"warning: \" + record.warning());");
   line("}");
   line("return report;");
   line("}");

@@ -61,11 +61,11 @@
 #include <utility>
 #include <vector>
 
-#include "partc/io/csv.hpp"
 #include "partc/errors.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/io/set_view.hpp"
-#include "partc/model_support.hpp"  // ParamInfo, SearchReport: a model used as a library needs them too
 #include "partc/io/vtk.hpp"            // FrameSpec
+#include "partc/model_support.hpp"  // ParamInfo, SearchReport: a model used as a library needs them too
 
 namespace partc {
 

@@ -21,10 +21,10 @@
 #include <string>
 #include <system_error>
 
-#include "partc/io/csv.hpp"
 #include "partc/domain.hpp"
 #include "partc/errors.hpp"
 #include "partc/faces.hpp"
+#include "partc/io/csv.hpp"
 
 namespace partc {
 

@@ -6,16 +6,16 @@
 // the same headers itself, so the code and its results are the same.
 #pragma once
 
-#include <partc/io/csv.hpp>
 #include <partc/domain.hpp>
 #include <partc/driver.hpp>
 #include <partc/errors.hpp>
 #include <partc/finite.hpp>
+#include <partc/io/csv.hpp>
 #include <partc/math.hpp>
 #include <partc/model_support.hpp>
-#include <partc/search/neighbour_search.hpp>
 #include <partc/parallel.hpp>
 #include <partc/particle_set.hpp>
 #include <partc/rng.hpp>
-#include <partc/vec.hpp>
+#include <partc/search/neighbour_search.hpp>
 #include <partc/search/verlet_list.hpp>
+#include <partc/vec.hpp>

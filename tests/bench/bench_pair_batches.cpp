@@ -29,8 +29,8 @@
 #include <vector>
 
 #include "partc/domain.hpp"
-#include "partc/search/ordered_cell_list.hpp"
 #include "partc/parallel.hpp"
+#include "partc/search/ordered_cell_list.hpp"
 #include "partc/simd/pair_batches.hpp"
 #include "seed_points.hpp"
 #include "size_list.hpp"

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "partc/io/csv.hpp"
 #include "partc/driver.hpp"
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/model_support.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/rng.hpp"

@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "partc/io/csv.hpp"
 #include "partc/domain.hpp"
 #include "partc/errors.hpp"
 #include "partc/faces.hpp"
 #include "partc/finite.hpp"
-#include "partc/search/neighbour_search.hpp"
-#include "partc/particle_set.hpp"
-#include "partc/vec.hpp"
-#include "partc/search/verlet_list.hpp"
+#include "partc/io/csv.hpp"
 #include "partc/io/vtk.hpp"
+#include "partc/particle_set.hpp"
+#include "partc/search/neighbour_search.hpp"
+#include "partc/search/verlet_list.hpp"
+#include "partc/vec.hpp"
 
 namespace fs = std::filesystem;
 using partc::Vec;

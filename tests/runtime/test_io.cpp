@@ -23,12 +23,12 @@
 #include <string>
 #include <vector>
 
-#include "partc/io/csv.hpp"
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
+#include "partc/io/csv.hpp"
+#include "partc/io/vtk.hpp"
 #include "partc/particle_set.hpp"
 #include "partc/vec.hpp"
-#include "partc/io/vtk.hpp"
 
 namespace fs = std::filesystem;
 using partc::Vec;

@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "search_cases.hpp"
+#include "partc/particle_set.hpp"
 #include "partc/search/brute_force.hpp"
 #include "partc/search/linked_cell_list.hpp"
 #include "partc/search/neighbour_search.hpp"
 #include "partc/search/ordered_cell_list.hpp"
-#include "partc/particle_set.hpp"
 #include "partc/search/slab_schedule.hpp"
 
 using partc::Domain;

@@ -19,8 +19,8 @@
 #include "partc/domain.hpp"
 #include "partc/parallel.hpp"
 #include "partc/particle_set.hpp"
-#include "partc/vec.hpp"
 #include "partc/search/verlet_list.hpp"
+#include "partc/vec.hpp"
 
 using partc::Domain;
 using partc::Vec;

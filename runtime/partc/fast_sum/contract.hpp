@@ -68,8 +68,8 @@ class FastSumRecord {
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (!float_inputs_.empty() && asked.order == 0 && asked.tol < float_inputs_tol &&
         warning_.empty())
-      warning_ = where_ + ": tol " + number(asked.tol) + " is finer than its float-stored inputs (" +
-                 float_inputs_ +
+      warning_ = where_ + ": tol " + number(asked.tol) +
+                 " is finer than its float-stored inputs (" + float_inputs_ +
                  ") resolve, about 1e-7 relative: it is met for the rounded inputs, not for the "
                  "values they were rounded from; store them as double (schedule: precision = "
                  "double) for a tighter sum";
@@ -109,7 +109,7 @@ class FastSumRecord {
 
   std::int64_t evaluations() const { return evaluations_; }
   const std::string& warning() const { return warning_; }  // "" when all is well
-  double worst_measured_l2() const { return worst_l2_; }  // -1: never checked
+  double worst_measured_l2() const { return worst_l2_; }   // -1: never checked
 
   std::string summary() const {
     std::string text = where_ + ": fmm order " + std::to_string(order_) +

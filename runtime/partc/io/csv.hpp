@@ -47,8 +47,8 @@
 
 #include "partc/errors.hpp"
 #include "partc/finite.hpp"
-#include "partc/io/set_view.hpp"
 #include "partc/io/output_file.hpp"
+#include "partc/io/set_view.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

@@ -16,8 +16,8 @@
 #include <limits>
 #include <vector>
 
-#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

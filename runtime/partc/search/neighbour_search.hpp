@@ -41,15 +41,15 @@
 #include <string>
 #include <vector>
 
-#include "partc/search/brute_force.hpp"
-#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/function_ref.hpp"
+#include "partc/parallel.hpp"
+#include "partc/search/brute_force.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/search/kd_tree.hpp"
 #include "partc/search/ordered_cell_list.hpp"
-#include "partc/parallel.hpp"
-#include "partc/simd/pair_batches.hpp"
 #include "partc/search/slab_schedule.hpp"
+#include "partc/simd/pair_batches.hpp"
 #include "partc/vec.hpp"
 
 namespace partc {

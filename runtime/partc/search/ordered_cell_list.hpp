@@ -32,9 +32,9 @@
 #include <utility>
 #include <vector>
 
-#include "partc/search/cell_grid.hpp"
 #include "partc/domain.hpp"
 #include "partc/parallel.hpp"
+#include "partc/search/cell_grid.hpp"
 #include "partc/search/search_instances.hpp"
 #include "partc/search/slab_schedule.hpp"
 #include "partc/vec.hpp"
