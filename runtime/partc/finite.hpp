@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -39,11 +40,37 @@ struct StorageTraits<Vec<D, T>> {
   static T component(const Vec<D, T>& value, int k) { return value[k]; }
 };
 
+namespace detail {
+
+// Whether x[0 .. count-1] are all finite: an exponent of all ones is an Inf
+// or a NaN. Integer operations on the bits, which vectorise (std::isfinite
+// with an early exit did not): the check runs after every step by default,
+// and was 2.3% of the seed's whole step at N = 1e5.
+template <class T>
+bool all_finite(const T* x, std::size_t count) {
+  using Bits = std::conditional_t<sizeof(T) == 8, std::uint64_t, std::uint32_t>;
+  constexpr Bits exponent = static_cast<Bits>(sizeof(T) == 8 ? 0x7ff0000000000000 : 0x7f800000);
+  Bits bad = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    Bits b;
+    std::memcpy(&b, x + k, sizeof b);
+    bad |= static_cast<Bits>((b & exponent) == exponent);
+  }
+  return bad == 0;
+}
+
+}  // namespace detail
+
 template <class Set>
 void check_finite(const Set& set, const char* set_name, std::int64_t step) {
   set.for_each_variable([&](const char* name, const auto& values) {
     using S = typename std::decay_t<decltype(values)>::value_type;
     if constexpr (std::is_floating_point_v<S> || StorageTraits<S>::is_vec) {
+      using T = typename StorageTraits<S>::component_type;
+      static_assert(sizeof(S) == StorageTraits<S>::components * sizeof(T), "values are T packed");
+      if (detail::all_finite(reinterpret_cast<const T*>(values.data()),
+                             values.size() * StorageTraits<S>::components))
+        return;
       for (std::size_t i = 0; i < values.size(); ++i)
         for (int k = 0; k < StorageTraits<S>::components; ++k) {
           const double x = StorageTraits<S>::component(values[i], k);

@@ -394,6 +394,33 @@ TEST_CASE("check_finite reports the first NaN or Inf with variable, id and step"
                     "numerical blow-up: variable 'p' of particle id 5 is nan at step 0 (set Q)");
 }
 
+// The vectorised test on the bits against std::isfinite: every special value
+// of double and float, alone at every offset of arrays longer than a vector.
+template <class T>
+void check_all_finite_agrees() {
+  using limits = std::numeric_limits<T>;
+  const T specials[] = {T(0),          -T(0),           T(1),
+                        limits::max(), -limits::max(),  limits::min(),
+                        limits::denorm_min(),           limits::infinity(),
+                        -limits::infinity(),            limits::quiet_NaN(),
+                        -limits::quiet_NaN(),           limits::signaling_NaN()};
+  for (std::size_t n : {1, 7, 33}) {
+    for (std::size_t at = 0; at < n; ++at)
+      for (const T value : specials) {
+        std::vector<T> x(n, T(0.5));
+        x[at] = value;
+        INFO("n " << n << ", value " << value << " at " << at);
+        CHECK(partc::detail::all_finite(x.data(), n) == static_cast<bool>(std::isfinite(value)));
+      }
+  }
+  CHECK(partc::detail::all_finite(static_cast<const T*>(nullptr), 0));
+}
+
+TEST_CASE("check_finite's test on the bits agrees with std::isfinite", "[finite]") {
+  check_all_finite_agrees<double>();
+  check_all_finite_agrees<float>();
+}
+
 // ---- VTK: a minimal XML reader, enough to check well-formedness and content.
 
 namespace {
