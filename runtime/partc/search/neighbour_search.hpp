@@ -301,6 +301,13 @@ class NeighbourSearch {
     };
   }
 
+  // The cell list's sorted points as coordinate arrays for the packed walks, once per build.
+  void batch_coordinates() const {
+    if (batched_build_ == build_count_) return;
+    batches_.build(cell_list_, size_);
+    batched_build_ = build_count_;
+  }
+
   // Order::keep on a path that sorts (brute force never does): indices differ.
   bool sorted_apart() const { return keep_order_ && kind_ != Kind::brute_force; }
 
@@ -393,10 +400,7 @@ template <int D>
 void NeighbourSearch<D>::for_each_pair_batch(
     bool with_self, FunctionRef<void(simd::PairBatch<D>&)> f) const {
   if (kind_ == Kind::cell_list) {
-    if (batched_build_ != build_count_) {  // the coordinates, once per build
-      batches_.build(cell_list_, size_);
-      batched_build_ = build_count_;
-    }
+    batch_coordinates();
     // One walk for both orders (the test is per batch, not per pair).
     return batches_.for_each_pair(cell_list_, with_self, [&](simd::PairBatch<D>& batch) {
       if (sorted_apart()) batch.renumber(order_);
@@ -420,13 +424,18 @@ void NeighbourSearch<D>::for_each_near_batch(
   const std::size_t blocks = std::clamp<std::size_t>(
       size_ / min_parallel(LoopWork::heavy), 1, 8 * static_cast<std::size_t>(max_threads()));
   near_batches_.resize(blocks);
+  // On the cell list in the set's order, the candidates are filtered by
+  // vectors (PairBatches::append_query), else pushed one by one.
+  const bool by_runs = kind_ == Kind::cell_list && !sorted_apart() && cell_list_.shifts_suffice();
+  if (by_runs) batch_coordinates();
   parallel_for(blocks, LoopWork::blocks, [&](std::size_t b) {
     simd::PairBatch<D>& batch = near_batches_[b];
     batch.clear();
     batch.set_slab(b);
     batch.set_each_pair_once(false);
     for (std::size_t i = b * size_ / blocks, stop = (b + 1) * size_ / blocks; i < stop; ++i) {
-      for_each_near(i, pusher(batch, i, with_self));
+      if (!by_runs || !batches_.append_query(cell_list_, i, with_self, batch))
+        for_each_near(i, pusher(batch, i, with_self));
       batch.hand_over_if_full(f);
     }
     batch.hand_over_rest(f);
