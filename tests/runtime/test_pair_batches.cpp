@@ -307,6 +307,9 @@ TEST_CASE("packed queries give for_each_near's neighbours, bit for bit", "[simd]
   }
 }
 
+// The half lists hold 23 entries a point on average in 2D, 14 in 3D, 6 in
+// 1D and 120-130 in the small boxes: points filtered alone (two vectors of
+// entries or more) and runs of short lists, both within one slab.
 TEST_CASE("the packed Verlet walk gives for_each_pair's pairs, bit for bit", "[simd][verlet]") {
   INFO("lanes of double: " << simd::lanes());
   for (const bool periodic : {true, false}) {
