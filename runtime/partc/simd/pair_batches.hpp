@@ -21,7 +21,8 @@
 // r2) of one batch, in that walk's order and with its dx bit for bit, the
 // pair (i, i) (dx 0) first when with_self, else left out. A batch never
 // spans two slabs, so results are as independent of the thread count as
-// for_each_pair's.
+// for_each_pair's. append_query packs one point's whole query the same way
+// (NeighbourSearch::for_each_near_batch's packed queries).
 //
 // Surprises:
 // - Entries count() .. padded() - 1 are padding (i and j the batch's last i,
