@@ -167,33 +167,18 @@ class NormAsR : public ir::Mutator {
   }
 };
 
-// The variables an expression reads, in reading order.
-class VariablesRead : public ir::Visitor {
- public:
-  std::vector<std::pair<int, int>> read;  // set, var
-  using ir::Visitor::visit;
-
- protected:
-  void visit(const ir::VarRef& n) override { read.emplace_back(n.set, n.var); }
-};
-
 // "S.p, S.q": the positions of both sets, then the charge's variables, that
 // the schedule stores as float; each once.
 std::string float_inputs(const ir::Model& model, const FastSumFact& fact) {
-  std::vector<std::pair<int, int>> inputs{{fact.sources, ir::kPosition},
-                                          {fact.targets, ir::kPosition}};
-  VariablesRead charge;
-  charge.visit(fact.charge);
-  inputs.insert(inputs.end(), charge.read.begin(), charge.read.end());
-  std::vector<std::pair<int, int>> seen;
+  std::vector<std::pair<int, int>> inputs{{fact.sources, ir::kPosition}};
+  if (fact.targets != fact.sources) inputs.emplace_back(fact.targets, ir::kPosition);
+  for (const auto& read : ir::variables_read(fact.charge))
+    if (std::find(inputs.begin(), inputs.end(), read) == inputs.end()) inputs.push_back(read);
   std::string out;
   for (const auto& [set, var] : inputs) {
     const ir::Variable& v = model.sets[set].vars[var];
-    if (v.storage != ir::Precision::Float ||
-        std::find(seen.begin(), seen.end(), std::pair{set, var}) != seen.end())
-      continue;
-    seen.emplace_back(set, var);
-    out += (out.empty() ? "" : ", ") + model.sets[set].name + "." + v.name;
+    if (v.storage == ir::Precision::Float)
+      out += (out.empty() ? "" : ", ") + model.sets[set].name + "." + v.name;
   }
   return out;
 }

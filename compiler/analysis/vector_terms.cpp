@@ -161,18 +161,19 @@ VectorTermFact judge(const Model& model, const Statement& st, const Accumulate& 
   }
   if (!form.obstacle.empty()) return {false, "scalar: the term has " + form.obstacle + in_double};
   const bool on_floats = st.schedule.arithmetic == Precision::Float;
+  const std::string packed =
+      !newton ? std::string("on vectors of neighbours: each particle's neighbours packed, the "
+                            "condition and term computed a vector of neighbours at a time, then "
+                            "summed into the particle in its query's order")
+              : std::string("on vectors of pairs: each point's pairs packed (compress-stores") +
+                    (queries ? "; per-particle queries packed alike when the search walks pairs "
+                               "serially"
+                             : "") +
+                    "), the condition and term computed a vector of pairs at a time, then given "
+                    "to both particles" +
+                    (queries ? " (to i alone from queries)" : "");
   return {true,
-          std::string(!newton ? "on vectors of neighbours: each particle's neighbours packed, the "
-                                "condition and term computed a vector of neighbours at a time, "
-                                "then summed into the particle in its query's order"
-                      : queries ? "on vectors of pairs: each point's pairs packed (compress-stores; "
-                                  "per-particle queries packed alike when the search walks pairs "
-                                  "serially), the condition and term computed a vector of pairs "
-                                  "at a time, then given to both particles (to i alone from "
-                                  "queries)"
-                                : "on vectors of pairs: each point's pairs packed "
-                                  "(compress-stores), the condition and term computed a vector "
-                                  "of pairs at a time, then given to both particles") +
+          packed +
               (excludes_coincident ? "; i's pair with itself left out, as the condition "
                                      "excludes |dx| = 0"
                                    : "") +

@@ -258,8 +258,8 @@ void ModelEmitter::header() {
   for (const std::string& h : std_headers) linef("#include <{}>", h);
   line("");
   std::vector<std::string> headers = {
-      "io/csv.hpp",           "domain.hpp",   "errors.hpp",       "finite.hpp", "math.hpp",
-      "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp",    "vec.hpp"};
+      "domain.hpp",   "errors.hpp",       "finite.hpp", "io/csv.hpp", "math.hpp",
+      "model_support.hpp", "parallel.hpp", "particle_set.hpp", "rng.hpp", "vec.hpp"};
   if (!searches_.empty()) headers.push_back("search/neighbour_search.hpp");
   if (std::any_of(facts_.searches.groups.begin(), facts_.searches.groups.end(),
                   [](const SearchGroup& g) { return !g.chosen_at_run_time.empty(); }))
@@ -928,15 +928,13 @@ void ModelEmitter::state() {
     std::vector<std::string> records(fast_sum_records_.size());
     for (const auto& [id, index] : fast_sum_records_) {
       const FastSumFact& fact = facts_.fast_sums.at(id);
-      const std::string role = fact.in_solve ? "solve_products" : "sum";
-      records[index] =
-          fact.float_inputs.empty() && !fact.in_solve
-              ? fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\"}}",
-                            options_.source_name, fact.line)
-              : fmt::format("partc::fast_sum::FastSumRecord{{\"sum at {}:{}\", "
-                            "partc::fast_sum::FastSumRecord::Role::{}{}}}",
-                            options_.source_name, fact.line, role,
-                            fact.float_inputs.empty() ? "" : ", \"" + fact.float_inputs + "\"");
+      // FastSumRecord(where, role = sum, float_inputs = ""): what differs from the defaults.
+      std::vector<std::string> args{fmt::format("\"sum at {}:{}\"", options_.source_name, fact.line)};
+      if (fact.in_solve || !fact.float_inputs.empty())
+        args.push_back(std::string("partc::fast_sum::FastSumRecord::Role::") +
+                       (fact.in_solve ? "solve_products" : "sum"));
+      if (!fact.float_inputs.empty()) args.push_back("\"" + fact.float_inputs + "\"");
+      records[index] = fmt::format("partc::fast_sum::FastSumRecord{{{}}}", fmt::join(args, ", "));
     }
     linef("std::vector<partc::fast_sum::FastSumRecord> fast_sums_{{{}}};", fmt::join(records, ", "));
     line("bool check_accuracy_ = false;  // --check-accuracy");

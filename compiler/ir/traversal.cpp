@@ -134,4 +134,17 @@ std::vector<const Accumulate*> accumulations_in(const Statement& st) {
   return all;
 }
 
+std::set<std::pair<int, int>> variables_read(const Expr& e) {
+  class Reads : public Visitor {
+   public:
+    std::set<std::pair<int, int>> found;
+    using Visitor::visit;
+
+   protected:
+    void visit(const VarRef& n) override { found.insert({n.set, n.var}); }
+  } reads;
+  reads.visit(e);
+  return reads.found;
+}
+
 }  // namespace partc::ir

@@ -5,6 +5,8 @@
 // few lines long. Call visit(expr) on a root; null handles are skipped.
 #pragma once
 
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "ir/ir.hpp"
@@ -55,5 +57,7 @@ class Visitor {
 std::vector<const Accumulate*> accumulations_in(const Expr& e);
 // Those of a statement: its value's, then its solve operator's.
 std::vector<const Accumulate*> accumulations_in(const Statement& st);
+// The particle variables e reads, (set, var), each once.
+std::set<std::pair<int, int>> variables_read(const Expr& e);
 
 }  // namespace partc::ir

@@ -434,7 +434,9 @@ void NeighbourSearch<D>::for_each_near_batch(
     batch.set_slab(b);
     batch.set_each_pair_once(false);
     for (std::size_t i = b * size_ / blocks, stop = (b + 1) * size_ / blocks; i < stop; ++i) {
-      if (!by_runs || !batches_.append_query(cell_list_, i, with_self, batch))
+      if (by_runs)
+        batches_.append_query(cell_list_, i, with_self, batch);
+      else
         for_each_near(i, pusher(batch, i, with_self));
       batch.hand_over_if_full(f);
     }

@@ -286,14 +286,14 @@ class PairBatches {
   // the scan's neighbours, order and dx bit for bit; (k, k) itself left out
   // unless with_self (it lies in the unshifted run of k's own cell: with
   // shifts, periodic sides have 3 cells or more, so no image of k is a
-  // candidate). Returns false, packing nothing, where the cell list has no
-  // runs (exact mode).
-  bool append_query(const OrderedCellList<D>& cells, std::size_t k, bool with_self,
+  // candidate). Only where the cell list has runs (cells.shifts_suffice(),
+  // not its exact mode).
+  void append_query(const OrderedCellList<D>& cells, std::size_t k, bool with_self,
                     PairBatch<D>& batch) const {
     std::array<const double*, D> x;
     for (int d = 0; d < D; ++d) x[d] = x_[d].data();
     const double squared_reach = cells.squared_reach();
-    return cells.for_each_run_between(
+    cells.for_each_run_between(
         k, 0, cells.order().size(), [&](std::size_t first, std::size_t stop, const Vec<D>& qs) {
           if (with_self || k < first || k >= stop)
             return batch.append_near(k, x, first, stop, qs, squared_reach);
